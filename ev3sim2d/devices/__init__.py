@@ -1,0 +1,1 @@
+"""Simulated EV3 hardware, one file per kind of device (see registry.py)."""

@@ -1,0 +1,53 @@
+"""The brick's own sysfs devices: the status LEDs and the battery."""
+
+from __future__ import annotations
+
+from .device import Device, invalid, parse_int
+
+
+class Led(Device):
+    """One colour of one brick status LED (class 'leds', e.g. led0:green:brick-status)."""
+
+    sysfs_class = "leds"
+
+    def __init__(self, name: str) -> None:
+        super().__init__("", "")
+        self.name = name
+        self.brightness = 0
+        self.trigger = "none"
+        self._readers.update(
+            brightness=lambda: str(self.brightness),
+            max_brightness=lambda: "255",
+            trigger=lambda: " ".join(f"[{t}]" if t == self.trigger else t for t in ("none", "timer", "heartbeat")),
+        )
+        self._writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
+        self._readers.pop("address")
+        self._readers.pop("driver_name")
+
+    def _set_brightness(self, value: str) -> None:
+        b = parse_int(value)
+        if b < 0:
+            raise invalid(value)
+        self.brightness = min(b, 255)
+
+    def _set_trigger(self, value: str) -> None:
+        self.trigger = value.strip()
+
+
+class Battery(Device):
+    """The EV3's rechargeable battery (class 'power_supply'): plausible, steady figures."""
+
+    sysfs_class = "power_supply"
+
+    def __init__(self) -> None:
+        super().__init__("", "")
+        self.name = "lego-ev3-battery"
+        self._readers.update(
+            voltage_now=lambda: "7800000",
+            current_now=lambda: "180000",
+            voltage_max_design=lambda: "8400000",
+            voltage_min_design=lambda: "6000000",
+            technology=lambda: "Li-ion",
+            type=lambda: "Battery",
+            scope=lambda: "System",
+        )

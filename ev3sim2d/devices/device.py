@@ -1,0 +1,58 @@
+"""A simulated device as the ev3dev drivers show it: named attributes read and written as text.
+
+Each kind of device lists its attributes in `_readers` / `_writers` (name ->
+method).  Errors are the OSErrors a sysfs file would give, so the shim turns
+them into the exceptions python-ev3dev2 raises on a real brick.
+"""
+
+from __future__ import annotations
+
+import errno
+from collections.abc import Callable
+
+
+def invalid(value: object) -> OSError:
+    """The error a driver gives for a value it refuses (EINVAL)."""
+    return OSError(errno.EINVAL, f"Invalid argument: {value!r}")
+
+
+def parse_int(value: str) -> int:
+    try:
+        return int(str(value).strip())
+    except ValueError:
+        raise invalid(value) from None
+
+
+class Device:
+    """Base of every simulated device: attribute access by name, as in /sys/class."""
+
+    sysfs_class = ""  # 'tacho-motor', 'lego-sensor', ...
+    name_prefix = ""  # device names are prefix + index: motor0, sensor2
+
+    def __init__(self, address: str, driver_name: str) -> None:
+        self.address = address
+        self.driver_name = driver_name
+        self._readers: dict[str, Callable[[], str]] = {
+            "address": lambda: self.address,
+            "driver_name": lambda: self.driver_name,
+        }
+        self._writers: dict[str, Callable[[str], None]] = {}
+
+    def read(self, attribute: str) -> str:
+        reader = self._readers.get(attribute)
+        if reader is None:
+            if attribute in self._writers:
+                raise OSError(errno.EACCES, f"{attribute} is write-only")
+            raise OSError(errno.ENOENT, f"No such attribute: {attribute}")
+        return reader()
+
+    def write(self, attribute: str, value: str) -> None:
+        writer = self._writers.get(attribute)
+        if writer is None:
+            if attribute in self._readers:
+                raise OSError(errno.EACCES, f"{attribute} is read-only")
+            raise OSError(errno.ENOENT, f"No such attribute: {attribute}")
+        writer(value)
+
+    def has_attribute(self, attribute: str) -> bool:
+        return attribute in self._readers or attribute in self._writers

@@ -1,0 +1,55 @@
+"""EV3 gyro sensor: angle and rate of turn, clockwise positive, as the EV3 driver reports them.
+
+The angle is counted from the robot's heading at power-on (or the last reset)
+and is not wrapped: two turns to the right read 720.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .device import invalid
+from .sensor import LegoSensor, Mode
+
+
+class GyroSensor(LegoSensor):
+    DRIVER = "lego-ev3-gyro"
+    MODES = {
+        "GYRO-ANG": Mode(1, 0, "deg", "s16", -32768, 32767),
+        "GYRO-RATE": Mode(1, 0, "d/s", "s16", -440, 440),
+        "GYRO-FAS": Mode(1, 0, "", "s16", -1464, 1464),
+        "GYRO-G&A": Mode(2, 0, "", "s16", -32768, 32767),
+        "GYRO-CAL": Mode(4, 0, "", "s16", -32768, 32767),
+        "TILT-ANG": Mode(1, 0, "deg", "s16", -32768, 32767),
+        "TILT-RATE": Mode(1, 0, "d/s", "s16", -440, 440),
+    }
+
+    def __init__(self, address, spec, surroundings) -> None:
+        super().__init__(address, spec, surroundings)
+        self.zero_rad = surroundings.heading_rad
+        self._writers["direct"] = self._direct
+
+    def _direct(self, value: str) -> None:
+        if value.encode("latin-1") != b"\x11":
+            raise invalid(value)
+        self.reset()
+
+    def reset(self) -> None:
+        self.zero_rad = self.around.heading_rad
+
+    def mode_changed(self) -> None:
+        if self.mode == "GYRO-CAL":
+            self.reset()
+
+    def measure(self, mode: str) -> tuple[float, ...]:
+        angle = -math.degrees(self.around.heading_rad - self.zero_rad)
+        rate = -math.degrees(self.around.turn_rate)
+        if mode == "GYRO-ANG":
+            return (angle,)
+        if mode in ("GYRO-RATE", "GYRO-FAS"):
+            return (rate,)
+        if mode == "GYRO-G&A":
+            return (angle, rate)
+        if mode == "GYRO-CAL":
+            return (0, 0, 0, 0)
+        return (0,)  # no tilt in a flat world

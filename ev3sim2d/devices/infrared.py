@@ -1,0 +1,36 @@
+"""EV3 infrared sensor: proximity to the nearest wall or robot ahead (0 to 100; 100 = about 70 cm or more).
+
+There are no beacons or remotes in the world yet: seek mode reports no
+beacon (-128 distance) and remote mode no buttons.
+"""
+
+from __future__ import annotations
+
+from .sensor import LegoSensor, Mode
+
+FULL_SCALE_CM = 70.0
+DEFAULT_CONE_DEG = 30.0
+
+
+class InfraredSensor(LegoSensor):
+    DRIVER = "lego-ev3-ir"
+    MODES = {
+        "IR-PROX": Mode(1, 0, "pct", "u8", 0, 100),
+        "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 127),
+        "IR-REMOTE": Mode(4, 0, "btn", "u8", 0, 255),
+        "IR-REM-A": Mode(1, 0, "", "u16", 0, 65535),
+        "IR-S-ALT": Mode(4, 0, "", "u8", 0, 255),
+        "IR-CAL": Mode(2, 0, "", "u16", 0, 65535),
+    }
+
+    def __init__(self, address, spec, surroundings) -> None:
+        super().__init__(address, spec, surroundings)
+        self.full_cm = float(spec.options.get("max_cm", FULL_SCALE_CM))
+        self.cone_deg = float(spec.options.get("cone_deg", DEFAULT_CONE_DEG))
+
+    def measure(self, mode: str) -> tuple[float, ...]:
+        if mode == "IR-PROX":
+            return (100.0 * self.nearest_in_cone(self.cone_deg, self.full_cm) / self.full_cm,)
+        if mode == "IR-SEEK":
+            return (0, -128) * 4
+        return (0,) * self.MODES[mode].num_values

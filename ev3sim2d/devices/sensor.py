@@ -1,0 +1,138 @@
+"""EV3 sensors as the ev3dev lego-sensor driver shows them: modes, value0..N, decimals, units.
+
+A sensor measures lazily: the first read in a tick computes the values of the
+current mode from the world (and adds the sensor's noise, if any); later reads
+in the same tick return the same numbers, as a real sensor's sample does.
+Each kind of sensor is one subclass that lists its modes and measures them.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from dataclasses import dataclass
+from typing import Protocol
+
+from .device import Device, invalid
+
+
+@dataclass(frozen=True)
+class Mode:
+    """One mode of a sensor, as the driver reports it."""
+
+    num_values: int
+    decimals: int = 0
+    units: str = ""
+    data_format: str = "s8"
+    low: float = -128
+    high: float = 127
+
+
+class Surroundings(Protocol):
+    """What a sensor may ask of the robot it sits on (the robot implements this)."""
+
+    tick: int
+    rng: object
+
+    def sensor_pose(self, spec) -> tuple[float, float, float]: ...
+    def ray(self, x: float, y: float, direction: float, max_cm: float) -> float | None: ...
+    def near(self, x: float, y: float, reach_cm: float) -> bool: ...
+
+
+_FORMATS = {"u8": "B", "s8": "b", "u16": "H", "s16": "h", "s16_be": ">h", "s32": "i", "float": "f"}
+
+
+class LegoSensor(Device):
+    """Base of the sensors: mode handling, value attributes, per-tick sampling and noise."""
+
+    sysfs_class = "lego-sensor"
+    name_prefix = "sensor"
+    DRIVER = ""
+    MODES: dict[str, Mode] = {}
+
+    def __init__(self, address: str, spec, surroundings: Surroundings) -> None:
+        super().__init__(address, self.DRIVER)
+        self.spec = spec
+        self.around = surroundings
+        self.noise = float(getattr(spec, "noise", 0.0) or 0.0)
+        self.mode = next(iter(self.MODES))
+        self._sample_tick = -1
+        self._sample_mode = ""
+        self._sample: tuple[int, ...] = ()
+        r, w = self._readers, self._writers
+        r.update(
+            mode=lambda: self.mode,
+            modes=lambda: " ".join(self.MODES),
+            num_values=lambda: str(self.MODES[self.mode].num_values),
+            decimals=lambda: str(self.MODES[self.mode].decimals),
+            units=lambda: self.MODES[self.mode].units,
+            bin_data_format=lambda: self.MODES[self.mode].data_format,
+            bin_data=self._bin_data,
+            commands=lambda: "",
+        )
+        for n in range(8):
+            r[f"value{n}"] = lambda n=n: self._value(n)
+        w.update(mode=self._set_mode, command=self._set_command)
+
+    # ------------------------------------------------------------ attributes
+    def _set_mode(self, value: str) -> None:
+        mode = value.strip()
+        if mode not in self.MODES:
+            raise invalid(value)
+        if mode != self.mode:
+            self.mode = mode
+            self.mode_changed()
+
+    def _set_command(self, value: str) -> None:
+        raise invalid(value)  # the EV3 sensors take no commands
+
+    def mode_changed(self) -> None:
+        """Hook for sensors whose state changes with the mode (the gyro resets)."""
+
+    def values(self) -> tuple[int, ...]:
+        """The current mode's values for this tick, as the driver gives them (scaled integers)."""
+        around = self.around
+        if self._sample_tick != around.tick or self._sample_mode != self.mode:
+            mode = self.MODES[self.mode]
+            raw = self.measure(self.mode)
+            scale = 10**mode.decimals
+            noise = self.noise
+            sample = []
+            for v in raw:
+                if noise:
+                    v += around.rng.normal(0.0, noise)
+                v = round(v * scale)
+                sample.append(int(min(max(v, mode.low), mode.high)))
+            self._sample = tuple(sample)
+            self._sample_tick = around.tick
+            self._sample_mode = self.mode
+        return self._sample
+
+    def _value(self, n: int) -> str:
+        values = self.values()
+        return str(values[n]) if n < len(values) else "0"
+
+    def _bin_data(self) -> str:
+        fmt = _FORMATS[self.MODES[self.mode].data_format]
+        data = b"".join(struct.pack(fmt if fmt.startswith(">") else "<" + fmt, v) for v in self.values())
+        return data.decode("latin-1")
+
+    # ------------------------------------------------------------- measuring
+    def measure(self, mode: str) -> tuple[float, ...]:
+        """The values of `mode` now, in the mode's units (before scaling by decimals)."""
+        raise NotImplementedError
+
+    def nearest_in_cone(self, cone_deg: float, max_cm: float) -> float:
+        """Distance to the nearest wall or robot along three rays (the cone's axis and edges); max_cm if none."""
+        x, y, facing = self.position()
+        half = math.radians(cone_deg) / 2.0
+        best = max_cm
+        for offset in (0.0, -half, half):
+            hit = self.around.ray(x, y, facing + offset, best)
+            if hit is not None and hit < best:
+                best = hit
+        return best
+
+    def position(self) -> tuple[float, float, float]:
+        """Where the sensor is: x, y (cm) and the direction it faces (radians)."""
+        return self.around.sensor_pose(self.spec)

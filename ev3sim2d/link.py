@@ -1,0 +1,67 @@
+"""The simulator's side of the shim's link: a program's sysfs reads and writes, in virtual time.
+
+Calls come from the program task holding the turn; they go to that task's
+robot's brick, and each costs the virtual time the same access takes on a
+real EV3 running python-ev3dev2 (a sysfs read about 1 ms, a write about 2 ms:
+writes make the driver act).  So a busy loop advances the clock as it would
+on the brick: a line follower that reads one sensor and sets two motors runs
+at about 100 loops a second.
+"""
+
+from __future__ import annotations
+
+from .scheduler import Scheduler
+
+READ_US = 1_000  # reading one attribute (a sensor value, a motor's position or state)
+WRITE_US = 2_000  # writing one attribute (a speed, a command, a mode)
+FIND_US = 1_000  # looking a device up when it is constructed
+
+
+class OutsideTask(RuntimeError):
+    """A device was used from a thread the simulator does not schedule."""
+
+
+class ShimLink:
+    """The backend ev3dev2._link talks to during a run."""
+
+    def __init__(self, scheduler: Scheduler) -> None:
+        self.scheduler = scheduler
+        self.sounds: list[tuple[float, str, object]] = []
+
+    def _robot(self):
+        task = self.scheduler.task_for_thread()
+        if task is None:
+            raise OutsideTask(
+                "an EV3 device was used from a thread ev3sim2d does not run; "
+                "start threads with threading or _thread inside the program"
+            )
+        return task.owner
+
+    def list_device_names(self, class_name: str, name_pattern: str, match: dict) -> list[str]:
+        names = self._robot().brick.list_device_names(class_name, name_pattern, match)
+        self.scheduler.spend(FIND_US)
+        return names
+
+    def read(self, class_name: str, device_name: str, attribute: str) -> str:
+        value = self._robot().brick.read(class_name, device_name, attribute)
+        self.scheduler.spend(READ_US)
+        return value
+
+    def write(self, class_name: str, device_name: str, attribute: str, value: str) -> None:
+        self._robot().brick.write(class_name, device_name, attribute, value)
+        self.scheduler.spend(WRITE_US)
+
+    def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:
+        device = self._robot().brick.device(class_name, device_name)
+        before = device.read(attribute)
+        timeout_us = None if timeout_ms is None else int(timeout_ms * 1000)
+        self.scheduler.wait(lambda: device.read(attribute) != before, timeout_us)
+
+    def call(self, feature: str, *args):
+        """Brick features beyond sysfs; sound, buttons and the LCD are recorded or answered simply for now."""
+        if feature == "buttons":
+            return []
+        if feature == "sound":
+            self.sounds.append((self.scheduler.now_s, args[0] if args else "", args[1:] if len(args) > 1 else None))
+            return None
+        return None

@@ -1,0 +1,96 @@
+"""Pymunk bodies and shapes built from the world: static walls and robots driven by their wheels.
+
+Walls are static boxes (the grid's wall cells merged into rectangles).  A
+robot is a dynamic body whose velocity is set every tick from its wheels (the
+motors have infinite acceleration); the contact solver then stops it at walls
+and lets it glide along them (walls have no friction).  Shapes of robot i are
+in filter group i + 1, so its own sensors never see it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pymunk
+
+WALL, ROBOT = 1, 2
+ROBOT_MASS_KG = 0.7
+
+
+class RobotBody:
+    """A robot's rigid body; counts its contacts with walls."""
+
+    def __init__(self, body: pymunk.Body, shape: pymunk.Poly, group: int) -> None:
+        self.body = body
+        self.shape = shape
+        self.group = group
+        self.filter = pymunk.ShapeFilter(group=group)
+        self.touching = 0  # wall shapes touched now
+        self.wall_contacts = 0  # times the robot started touching a wall
+
+    def drive(self, speed: float, heading: float, turn_rate: float) -> None:
+        """Move at speed (cm/s) along heading (rad) while turning at turn_rate (rad/s)."""
+        self.body.velocity = (speed * math.cos(heading), speed * math.sin(heading))
+        self.body.angular_velocity = turn_rate
+
+
+class Physics:
+    """The pymunk space of one world."""
+
+    def __init__(self, wall_rectangles: list[tuple[float, float, float, float]]) -> None:
+        space = pymunk.Space()
+        space.iterations = 12
+        for x0, y0, x1, y1 in wall_rectangles:
+            box = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+            box.collision_type = WALL
+            box.friction = 0.0
+            box.elasticity = 0.0
+            space.add(box)
+        space.on_collision(ROBOT, WALL, begin=self._begin, separate=self._separate)
+        self.space = space
+        self.robots: dict[pymunk.Body, RobotBody] = {}
+
+    def add_robot(self, outline: list[tuple[float, float]], x: float, y: float, heading: float) -> RobotBody:
+        """A robot body around (0, 0) = the middle of its axle, facing +x, placed at (x, y, heading)."""
+        moment = pymunk.moment_for_poly(ROBOT_MASS_KG, outline)
+        body = pymunk.Body(ROBOT_MASS_KG, moment)
+        body.position = (x, y)
+        body.angle = heading
+        shape = pymunk.Poly(body, outline, radius=0.1)
+        shape.collision_type = ROBOT
+        shape.friction = 0.0
+        shape.elasticity = 0.0
+        group = len(self.robots) + 1
+        shape.filter = pymunk.ShapeFilter(group=group)
+        self.space.add(body, shape)
+        robot = RobotBody(body, shape, group)
+        self.robots[body] = robot
+        return robot
+
+    def overlaps_wall(self, robot: RobotBody) -> bool:
+        return any(hit.shape.collision_type == WALL for hit in self.space.shape_query(robot.shape))
+
+    def _begin(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: object) -> None:
+        robot = self.robots.get(arbiter.shapes[0].body)
+        if robot is not None:
+            if robot.touching == 0:
+                robot.wall_contacts += 1
+            robot.touching += 1
+
+    def _separate(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: object) -> None:
+        robot = self.robots.get(arbiter.shapes[0].body)
+        if robot is not None and robot.touching > 0:
+            robot.touching -= 1
+
+    def step(self, dt: float) -> None:
+        self.space.step(dt)
+
+    def ray(self, x: float, y: float, direction: float, max_cm: float, group: int) -> float | None:
+        """Distance from (x, y) along direction to the first wall or other robot, if within max_cm."""
+        end = (x + max_cm * math.cos(direction), y + max_cm * math.sin(direction))
+        hit = self.space.segment_query_first((x, y), end, 0.0, pymunk.ShapeFilter(group=group))
+        return None if hit is None else hit.alpha * max_cm
+
+    def near(self, x: float, y: float, reach_cm: float, group: int) -> bool:
+        """Whether a wall or another robot is within reach_cm of (x, y)."""
+        return self.space.point_query_nearest((x, y), reach_cm, pymunk.ShapeFilter(group=group)) is not None

@@ -1,0 +1,1 @@
+"""Drawing runs and worlds: readers of the trace, never of the live simulation."""

@@ -1,0 +1,123 @@
+"""One simulated robot: its description, its body in the physics world, its devices and brick.
+
+Each tick the wheel motors plan how far they turn; the robot turns that into
+a body velocity (infinite acceleration), the physics moves it, and the
+encoders count how far each wheel really went: the forward travel of the
+point where the wheel touches the floor.  A robot held by a wall therefore
+sees its encoders stop, and its motors report stalled.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .brick import Brick
+from .devices.color import ColorSensor
+from .devices.motor import TachoMotor
+from .devices.registry import SENSORS
+from .physics import Physics
+from .world.pose import Pose
+from .world.robot_spec import RobotSpec
+
+
+def body_outline(spec: RobotSpec) -> list[tuple[float, float]]:
+    """The robot's footprint (cm, robot frame): its body box plus the tips of forward-facing touch sensors."""
+    b = spec.body
+    half = b.width_cm / 2
+    points = [(b.front_cm, -half), (b.front_cm, half), (-b.back_cm, half), (-b.back_cm, -half)]
+    for sensor in spec.sensors:
+        if sensor.kind == "touch":
+            a = math.radians(sensor.angle_deg)
+            x, y = sensor.radius_cm * math.cos(a), sensor.radius_cm * math.sin(a)
+            points += [(x, y - 1.0), (x, y + 1.0)]
+    return points
+
+
+class Robot:
+    """A robot in the world: pose, wheels, devices; the Surroundings its sensors measure."""
+
+    def __init__(self, name: str, spec: RobotSpec, start: Pose, physics: Physics, floor, rng, ambient: float) -> None:
+        self.name = name
+        self.spec = spec
+        self.start = start
+        self.physics = physics
+        self.rng = rng
+        self.tick = 0
+        heading = math.radians(start.heading_deg)
+        self.body = physics.add_robot(body_outline(spec), start.x_cm, start.y_cm, heading)
+        self.group = self.body.group
+        self.x, self.y, self.heading_rad = start.x_cm, start.y_cm, heading
+        self.turn_rate = 0.0
+        self.cm_per_deg = math.pi * spec.wheel_diameter_mm / 10.0 / 360.0
+        self.track_cm = spec.axle_track_mm / 10.0
+
+        self.motors: dict[str, TachoMotor] = {}
+        for m in sorted(spec.motors, key=lambda m: m.port):
+            self.motors[m.port] = TachoMotor(f"ev3-ports:{m.port}", m.kind)
+        self.left = self.motors[spec.left_wheel.port]
+        self.right = self.motors[spec.right_wheel.port]
+        self.other_motors = [m for m in self.motors.values() if m is not self.left and m is not self.right]
+
+        self.sensors = {}
+        for s in sorted(spec.sensors, key=lambda s: s.port):
+            kind = SENSORS[s.kind]
+            address = f"ev3-ports:{s.port}"
+            if kind is ColorSensor:
+                self.sensors[s.port] = kind(address, s, self, floor, ambient)
+            else:
+                self.sensors[s.port] = kind(address, s, self)
+        self.brick = Brick(list(self.motors.values()), list(self.sensors.values()))
+        self._planned = (0.0, 0.0)
+
+    # ------------------------------------------------------------ surroundings
+    def sensor_pose(self, spec) -> tuple[float, float, float]:
+        """Where a sensor is (x, y in cm) and the direction it looks (radians)."""
+        h = self.heading_rad
+        a = h + math.radians(spec.angle_deg)
+        r = spec.radius_cm
+        return self.x + r * math.cos(a), self.y + r * math.sin(a), h + math.radians(spec.aim_deg)
+
+    def ray(self, x: float, y: float, direction: float, max_cm: float) -> float | None:
+        return self.physics.ray(x, y, direction, max_cm, self.group)
+
+    def near(self, x: float, y: float, reach_cm: float) -> bool:
+        return self.physics.near(x, y, reach_cm, self.group)
+
+    @property
+    def pose(self) -> Pose:
+        return Pose(self.x, self.y, math.degrees(self.heading_rad))
+
+    @property
+    def touching_wall(self) -> bool:
+        return self.body.touching > 0
+
+    # ------------------------------------------------------------------ ticks
+    def before_step(self, dt: float) -> None:
+        """Set the body's velocity from what the wheel motors plan to turn this tick."""
+        left = self.left.plan(dt)
+        right = self.right.plan(dt)
+        self._planned = (left, right)
+        left_cm, right_cm = left * self.cm_per_deg, right * self.cm_per_deg
+        turn = (right_cm - left_cm) / self.track_cm
+        # velocity along the mid-step heading: arcs come out right to second order
+        self.body.drive((left_cm + right_cm) / 2 / dt, self.heading_rad + turn / 2, turn / dt)
+
+    def after_step(self, dt: float) -> None:
+        """Read back where the body went; the encoders count each wheel's real forward travel."""
+        body = self.body.body
+        x, y = body.position
+        heading = body.angle
+        dx, dy = x - self.x, y - self.y
+        dh = heading - self.heading_rad
+        mid = self.heading_rad + dh / 2
+        forward = dx * math.cos(mid) + dy * math.sin(mid)
+        half_turn = dh * self.track_cm / 2
+        planned_left, planned_right = self._planned
+        self.left.measured(planned_left, (forward - half_turn) / self.cm_per_deg, dt)
+        self.right.measured(planned_right, (forward + half_turn) / self.cm_per_deg, dt)
+        for motor in self.other_motors:
+            turned = motor.plan(dt)
+            motor.measured(turned, turned, dt)
+        self.turn_rate = dh / dt
+        self.x, self.y, self.heading_rad = x, y, heading
+        self.tick += 1

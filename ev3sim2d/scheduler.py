@@ -1,0 +1,211 @@
+"""Virtual time: one clock, the world's ticks, and the turns of program tasks.
+
+Time is counted in whole microseconds, so every run adds up the same way on
+every machine.  The world advances in fixed ticks (`tick_us`).  Program tasks
+(a robot's main program, and threads it starts) are real OS threads, but only
+the task holding the turn runs; the others wait on their own lock.  A task
+gives up the turn only when it spends virtual time (a device access, a sleep):
+it is then queued by wake-up time, and the earliest task (ties: first queued)
+runs next.  Before the clock moves past a tick, the tick runs.  So the order
+of everything depends only on virtual time, never on the host.
+
+With a single task nothing is queued: spending time just steps the world
+inline, which keeps the common case fast.
+"""
+
+from __future__ import annotations
+
+import heapq
+import threading
+from collections.abc import Callable
+
+
+class RunOver(BaseException):
+    """Raised inside a program task once the run has ended (time limit, stop)."""
+
+
+class Task:
+    """A thread of a program, scheduled in virtual time."""
+
+    __slots__ = ("name", "owner", "main", "thread_id", "_turn", "done", "error")
+
+    def __init__(self, name: str, owner: object, main: bool) -> None:
+        self.name = name
+        self.main = main  # the run ends when every main task has ended
+        self.owner = owner  # what the task acts for (the robot), opaque here
+        self.thread_id: int | None = None
+        self._turn = threading.Lock()
+        self._turn.acquire()
+        self.done = False
+        self.error: BaseException | None = None
+
+    def __repr__(self) -> str:
+        return f"Task({self.name!r})"
+
+
+class Scheduler:
+    """The virtual clock: ticks the world and hands the turn between tasks."""
+
+    def __init__(self, tick_us: int, on_tick: Callable[[int], None], limit_us: int | None = None) -> None:
+        if tick_us <= 0:
+            raise ValueError("tick_us must be positive")
+        self.tick_us = tick_us
+        self.now_us = 0
+        self.next_tick_us = tick_us
+        self.limit_us = limit_us
+        self._on_tick = on_tick
+        self._ready: list[tuple[int, int, Task]] = []
+        self._seq = 0
+        self.current: Task | None = None
+        self._by_thread: dict[int, Task] = {}
+        self.tasks: list[Task] = []
+        self.over = False
+        self.end_reason: str | None = None
+        self.progress = 0  # bumped whenever virtual time moves; a watchdog reads it
+        self.settled = threading.Event()  # set once the run is over and every main task has ended
+
+    # ----------------------------------------------------------------- clock
+    @property
+    def now_s(self) -> float:
+        return self.now_us / 1e6
+
+    def _advance_to(self, target_us: int) -> None:
+        """Move the clock to target_us, running every tick on the way."""
+        limit = self.limit_us
+        if limit is not None and target_us > limit:
+            self._advance_to(limit)
+            self.end("time_limit")
+            raise RunOver()
+        tick_us = self.tick_us
+        on_tick = self._on_tick
+        while self.next_tick_us <= target_us:
+            self.now_us = self.next_tick_us
+            on_tick(self.now_us)
+            self.next_tick_us += tick_us
+            self.progress += 1
+        self.now_us = target_us
+        self.progress += 1
+
+    def end(self, reason: str) -> None:
+        """End the run; tasks that run again get RunOver."""
+        if not self.over:
+            self.over = True
+            self.end_reason = reason
+
+    # ----------------------------------------------------------------- tasks
+    def task_for_thread(self, thread_id: int | None = None) -> Task | None:
+        return self._by_thread.get(threading.get_ident() if thread_id is None else thread_id)
+
+    def spawn(
+        self, name: str, owner: object, body: Callable[[], None], start_thread: Callable, main: bool = False
+    ) -> Task:
+        """Create a task running body() in a new thread; it gets its first turn at the current time.
+
+        start_thread(fn) starts fn in a new OS thread (the real _thread.start_new_thread,
+        so that programs that patch threading cannot interfere).
+        """
+        task = Task(name, owner, main)
+        self.tasks.append(task)
+
+        def main() -> None:
+            task.thread_id = threading.get_ident()
+            self._by_thread[task.thread_id] = task
+            task._turn.acquire()  # wait for the first turn
+            try:
+                if self.over:
+                    raise RunOver()
+                body()
+            except RunOver:
+                pass
+            except BaseException as exc:  # noqa: BLE001 - handed to whoever reads the task
+                task.error = exc
+            finally:
+                self._finish(task)
+
+        self._queue(task, self.now_us)
+        start_thread(main, ())
+        return task
+
+    def _queue(self, task: Task, wake_us: int) -> None:
+        heapq.heappush(self._ready, (wake_us, self._seq, task))
+        self._seq += 1
+
+    def start(self) -> None:
+        """Give the first turn (called once, from outside the tasks)."""
+        self._hand_on(None)
+
+    def spend(self, us: int) -> None:
+        """The current task spends us microseconds of virtual time (may give up the turn)."""
+        if self.over:
+            raise RunOver()
+        target = self.now_us + us
+        ready = self._ready
+        if not ready or ready[0][0] > target:
+            self._advance_to(target)
+            return
+        me = self.current
+        self._queue(me, target)
+        self._hand_on(me)
+
+    def wait(self, predicate: Callable[[], bool], timeout_us: int | None) -> bool:
+        """Spend time tick by tick until predicate() is true or timeout_us passes."""
+        deadline = None if timeout_us is None else self.now_us + timeout_us
+        while not predicate():
+            if deadline is not None and self.now_us >= deadline:
+                return False
+            step_to = self.next_tick_us if deadline is None else min(self.next_tick_us, deadline)
+            self.spend(max(step_to - self.now_us, 0) or self.tick_us)
+        return True
+
+    def _hand_on(self, me: Task | None) -> None:
+        """Give the turn to the earliest queued task; me (if any) waits for its next turn."""
+        while True:
+            if not self._ready:
+                return
+            wake_us, _, nxt = heapq.heappop(self._ready)
+            if nxt.done:
+                continue
+            try:
+                self._advance_to(max(wake_us, self.now_us))
+            except RunOver:
+                if me is not None:
+                    raise
+                self._release_all()
+                return
+            break
+        self.current = nxt
+        if nxt is me:
+            return
+        nxt._turn.release()
+        if me is not None:
+            me._turn.acquire()
+            self.current = me
+            if self.over:
+                raise RunOver()
+
+    def _mains_done(self) -> bool:
+        return all(t.done for t in self.tasks if t.main)
+
+    def _finish(self, task: Task) -> None:
+        task.done = True
+        self._by_thread.pop(task.thread_id, None)
+        if not self.over and self._mains_done():
+            self.end("finished")
+        if self.over:
+            self._release_all()
+            return
+        self._hand_on(None)
+
+    def _release_all(self) -> None:
+        """After the end, let every waiting task run once so it can unwind with RunOver."""
+        while self._ready:
+            _, _, task = heapq.heappop(self._ready)
+            if not task.done:
+                task._turn.release()
+        if self._mains_done():
+            self.settled.set()
+
+    def stop(self, reason: str) -> None:
+        """End the run from outside the tasks (watchdog, Ctrl-C) and wake the waiting ones."""
+        self.end(reason)
+        self._release_all()
