@@ -2,9 +2,12 @@
 
 Walls are static boxes (the grid's wall cells merged into rectangles).  A
 robot is a dynamic body whose velocity is set every tick from its wheels (the
-motors have infinite acceleration); the contact solver then stops it at walls
-and lets it glide along them (walls have no friction).  Shapes of robot i are
-in filter group i + 1, so its own sensors never see it.
+motors have infinite acceleration), less any part of it that would push into
+something it already touches: pymunk moves bodies before it solves contacts,
+so a robot told to push a wall every tick would otherwise sink into it.  The
+contact solver does the rest: a wall stops the robot at its face, and a robot
+that meets it at an angle glides along it (walls have no friction).  Shapes
+of robot i are in filter group i + 1, so its own sensors never see it.
 """
 
 from __future__ import annotations
@@ -18,20 +21,40 @@ ROBOT_MASS_KG = 0.7
 
 
 class RobotBody:
-    """A robot's rigid body; counts its contacts with walls."""
+    """A robot's rigid body; counts its contacts, and with walls."""
 
     def __init__(self, body: pymunk.Body, shape: pymunk.Poly, group: int) -> None:
         self.body = body
         self.shape = shape
         self.group = group
-        self.filter = pymunk.ShapeFilter(group=group)
+        self.contacts = 0  # shapes touched now (walls and robots)
         self.touching = 0  # wall shapes touched now
         self.wall_contacts = 0  # times the robot started touching a wall
 
     def drive(self, speed: float, heading: float, turn_rate: float) -> None:
         """Move at speed (cm/s) along heading (rad) while turning at turn_rate (rad/s)."""
-        self.body.velocity = (speed * math.cos(heading), speed * math.sin(heading))
+        vx, vy = speed * math.cos(heading), speed * math.sin(heading)
+        if self.contacts:
+            vx, vy = self._unblocked(vx, vy)
+        self.body.velocity = (vx, vy)
         self.body.angular_velocity = turn_rate
+
+    def _unblocked(self, vx: float, vy: float) -> tuple[float, float]:
+        """The velocity less its components into the shapes the robot touches."""
+        normals = []
+        shape = self.shape
+
+        def collect(arbiter: pymunk.Arbiter) -> None:
+            n = arbiter.normal  # points from shapes[0] to shapes[1]
+            normals.append((n.x, n.y) if arbiter.shapes[0] is shape else (-n.x, -n.y))
+
+        self.body.each_arbiter(collect)
+        for _ in range(2):  # twice, for corners
+            for nx, ny in normals:
+                into = vx * nx + vy * ny
+                if into > 0:
+                    vx, vy = vx - into * nx, vy - into * ny
+        return vx, vy
 
 
 class Physics:
@@ -47,6 +70,7 @@ class Physics:
             box.elasticity = 0.0
             space.add(box)
         space.on_collision(ROBOT, WALL, begin=self._begin, separate=self._separate)
+        space.on_collision(ROBOT, ROBOT, begin=self._begin, separate=self._separate)
         self.space = space
         self.robots: dict[pymunk.Body, RobotBody] = {}
 
@@ -71,16 +95,22 @@ class Physics:
         return any(hit.shape.collision_type == WALL for hit in self.space.shape_query(robot.shape))
 
     def _begin(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: object) -> None:
-        robot = self.robots.get(arbiter.shapes[0].body)
-        if robot is not None:
-            if robot.touching == 0:
-                robot.wall_contacts += 1
-            robot.touching += 1
+        self._count(arbiter, +1)
 
     def _separate(self, arbiter: pymunk.Arbiter, space: pymunk.Space, data: object) -> None:
-        robot = self.robots.get(arbiter.shapes[0].body)
-        if robot is not None and robot.touching > 0:
-            robot.touching -= 1
+        self._count(arbiter, -1)
+
+    def _count(self, arbiter: pymunk.Arbiter, change: int) -> None:
+        a, b = arbiter.shapes
+        for mine, other in ((a, b), (b, a)):
+            robot = self.robots.get(mine.body)
+            if robot is None:
+                continue
+            robot.contacts = max(robot.contacts + change, 0)
+            if other.collision_type == WALL:
+                if change > 0 and robot.touching == 0:
+                    robot.wall_contacts += 1
+                robot.touching = max(robot.touching + change, 0)
 
     def step(self, dt: float) -> None:
         self.space.step(dt)
