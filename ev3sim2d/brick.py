@@ -53,9 +53,3 @@ class Brick:
         if isinstance(wanted, (list, tuple)):
             return any(value.find(w) >= 0 for w in wanted)
         return value.find(wanted) >= 0
-
-    def read(self, class_name: str, name: str, attribute: str) -> str:
-        return self.device(class_name, name).read(attribute)
-
-    def write(self, class_name: str, name: str, attribute: str, value: str) -> None:
-        self.device(class_name, name).write(attribute, value)

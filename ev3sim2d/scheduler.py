@@ -57,7 +57,7 @@ class Scheduler:
         self._ready: list[tuple[int, int, Task]] = []
         self._seq = 0
         self.current: Task | None = None
-        self._by_thread: dict[int, Task] = {}
+        self.by_thread: dict[int, Task] = {}  # thread ident -> the task it runs
         self.tasks: list[Task] = []
         self.over = False
         self.end_reason: str | None = None
@@ -94,7 +94,7 @@ class Scheduler:
 
     # ----------------------------------------------------------------- tasks
     def task_for_thread(self, thread_id: int | None = None) -> Task | None:
-        return self._by_thread.get(threading.get_ident() if thread_id is None else thread_id)
+        return self.by_thread.get(threading.get_ident() if thread_id is None else thread_id)
 
     def spawn(
         self, name: str, owner: object, body: Callable[[], None], start_thread: Callable, main: bool = False
@@ -109,7 +109,7 @@ class Scheduler:
 
         def main() -> None:
             task.thread_id = threading.get_ident()
-            self._by_thread[task.thread_id] = task
+            self.by_thread[task.thread_id] = task
             task._turn.acquire()  # wait for the first turn
             try:
                 if self.over:
@@ -141,6 +141,10 @@ class Scheduler:
         target = self.now_us + us
         ready = self._ready
         if not ready or ready[0][0] > target:
+            if target < self.next_tick_us and (self.limit_us is None or target <= self.limit_us):
+                self.now_us = target  # the common case: no tick, nobody else due
+                self.progress += 1
+                return
             self._advance_to(target)
             return
         me = self.current
@@ -188,7 +192,7 @@ class Scheduler:
 
     def _finish(self, task: Task) -> None:
         task.done = True
-        self._by_thread.pop(task.thread_id, None)
+        self.by_thread.pop(task.thread_id, None)
         if not self.over and self._mains_done():
             self.end("finished")
         if self.over:

@@ -21,8 +21,9 @@ from .world.pose import Pose
 from .world.robot_spec import RobotSpec
 from .world.world import World
 
+DEGREES = 180.0 / math.pi
 TICK_US = 10_000  # the world advances in steps of 10 ms of virtual time
-SENSOR_SNAPSHOT_EVERY = 5  # ticks between snapshots of every sensor in the trace (20 Hz)
+SENSOR_SNAPSHOT_EVERY = 10  # ticks between snapshots of every sensor in the trace (10 Hz)
 
 
 @dataclass
@@ -96,9 +97,9 @@ class Simulation:
         row = []
         for robot in self.robots:
             robot.after_step(dt)
-            row += (robot.x, robot.y, math.degrees(robot.heading_rad), 1.0 if robot.body.touching else 0.0)
+            row += (robot.x, robot.y, robot.heading_rad * DEGREES, 1.0 if robot.body.touching else 0.0)
             for motor in robot.motors.values():
-                row += (motor.position, motor.speed, motor.state_bits)
+                row += (motor.shaft_deg * motor.sign + motor.offset, motor.speed_dps * motor.sign, motor.state_bits)
         t = now_us / 1e6
         self.trace.add_tick(t, row)
         self.ticks += 1

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+from array import array
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,17 +42,22 @@ class Trace:
     robots: list[dict]  # per robot: name, spec (dict), start pose, motor ports, sensor ports + kinds
     world: dict  # name, title, YAML text of the world file
     seed: int
-    times: list[float] = field(default_factory=list)
-    rows: list[list[float]] = field(default_factory=list)  # per tick, per robot: pose columns + motor columns
+    times: array = field(default_factory=lambda: array("d"))
+    values: array = field(default_factory=lambda: array("d"))  # per tick, per robot: pose + motor columns, flat
     sensor_times: list[float] = field(default_factory=list)
     sensor_rows: list[list] = field(default_factory=list)  # per snapshot, per robot: {port: [mode, values]}
     output: list[OutputLine] = field(default_factory=list)
     result: dict = field(default_factory=dict)  # status, error, ... filled in at the end
 
     # ------------------------------------------------------------ recording
-    def add_tick(self, t_s: float, row: list[float]) -> None:
+    @property
+    def width(self) -> int:
+        """Columns per tick: for each robot its pose columns, then its motor columns."""
+        return sum(len(POSE_COLUMNS) + len(MOTOR_COLUMNS) * len(r["motors"]) for r in self.robots)
+
+    def add_tick(self, t_s: float, row) -> None:
         self.times.append(t_s)
-        self.rows.append(row)
+        self.values.extend(row)
 
     def add_sensors(self, t_s: float, snapshot: list[dict]) -> None:
         self.sensor_times.append(t_s)
@@ -63,10 +69,7 @@ class Trace:
     # -------------------------------------------------------------- reading
     def motion(self) -> np.ndarray:
         """ticks × columns: for each robot, x, y, heading, touching, then position/speed/state per motor."""
-        if not self.rows:
-            width = sum(len(POSE_COLUMNS) + len(MOTOR_COLUMNS) * len(r["motors"]) for r in self.robots)
-            return np.zeros((0, width))
-        return np.asarray(self.rows, dtype=float)
+        return np.frombuffer(self.values, dtype=float).reshape(len(self.times), self.width).copy()
 
     def robot_columns(self, index: int) -> slice:
         start = 0
@@ -124,8 +127,8 @@ class Trace:
             if meta.get("format") != FORMAT:
                 raise ValueError(f"{path}: not an ev3sim2d trace (format {meta.get('format')!r})")
             trace = cls(meta["tick_s"], meta["robots"], meta["world"], meta["seed"])
-            trace.times = data["times"].tolist()
-            trace.rows = data["motion"].tolist()
+            trace.times = array("d", data["times"].tolist())
+            trace.values = array("d", data["motion"].ravel().tolist())
             trace.sensor_times = data["sensor_times"].tolist()
         trace.sensor_rows = meta["sensor_rows"]
         trace.output = [OutputLine(**o) for o in meta["output"]]

@@ -1,0 +1,392 @@
+"""A robot description: wheels, body box, and which motor or sensor sits on which port, read from YAML.
+
+Robot frame: the origin is the robot centre (midway between the two driving
+wheels), +x points forward, +y to the left.  A sensor sits `radius_cm` from the
+centre in direction `angle_deg` (0 = straight ahead, 90 = left), and looks
+either `down` at the floor or `forward` (turned `aim_deg` from the robot's
+heading, 90 = to the left).  See docs/world-files.md for the file format.
+"""
+
+from __future__ import annotations
+
+import copy
+import difflib
+import functools
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .colors import EV3_COLORS
+from .yaml_source import Fields, Node, load_yaml_text, read_text_file
+
+MOTOR_PORTS = ("outA", "outB", "outC", "outD")
+SENSOR_PORTS = ("in1", "in2", "in3", "in4")
+MOTOR_KINDS = ("large", "medium")
+SENSOR_KINDS = ("touch", "gyro", "color", "ultrasonic", "infrared")
+FACINGS = ("forward", "down")
+WHEELS = ("left", "right")
+
+SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
+    "touch": {},
+    "gyro": {},
+    "color": {"spot_cm": (1.5, "cm", "diameter of the floor spot the sensor sees")},
+    "ultrasonic": {
+        "cone_deg": (15.0, "degrees", "full opening angle of the sound beam"),
+        "max_cm": (255.0, "cm", "farthest distance measured; beyond it the sensor reads max_cm"),
+    },
+    "infrared": {
+        "cone_deg": (30.0, "degrees", "full opening angle of the infrared beam"),
+        "max_cm": (70.0, "cm", "distance that reads as proximity 100"),
+    },
+}
+"""Kind -> option -> (default, unit, meaning): the extra keys a sensor of that kind may have."""
+
+DEFAULT_FACING = {
+    "touch": "forward",
+    "gyro": "down",
+    "color": "down",
+    "ultrasonic": "forward",
+    "infrared": "forward",
+}
+
+DEFAULT_ROBOT_COLOR = (230, 170, 30)
+"""Body colour to draw when a robot file gives none (LEGO yellow)."""
+
+
+@dataclass(frozen=True)
+class MotorSpec:
+    """A motor on an output port; `wheel` says which driving wheel it turns, if any."""
+
+    port: str
+    kind: str
+    wheel: str | None = None
+
+
+@dataclass(frozen=True)
+class SensorSpec:
+    """A sensor on an input port, placed in the robot frame; `noise` is a standard deviation in its own unit."""
+
+    port: str
+    kind: str
+    angle_deg: float = 0.0
+    radius_cm: float = 0.0
+    facing: str = "down"
+    noise: float = 0.0
+    options: dict[str, float] = field(default_factory=dict)
+    aim_deg: float = 0.0
+
+    @property
+    def offset_cm(self) -> tuple[float, float]:
+        """(x, y) of the sensor in the robot frame (x forward, y left)."""
+        a = math.radians(self.angle_deg)
+        return (self.radius_cm * math.cos(a), self.radius_cm * math.sin(a))
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    """The robot's footprint: a box reaching `front_cm` ahead of and `back_cm` behind the centre, `width_cm` wide."""
+
+    front_cm: float
+    back_cm: float
+    width_cm: float
+
+    @property
+    def length_cm(self) -> float:
+        return self.front_cm + self.back_cm
+
+    def corners_cm(self) -> list[tuple[float, float]]:
+        """The box corners in the robot frame, counter-clockwise from front-left."""
+        half = self.width_cm / 2
+        return [(self.front_cm, half), (-self.back_cm, half), (-self.back_cm, -half), (self.front_cm, -half)]
+
+
+@dataclass(frozen=True)
+class RobotSpec:
+    """Everything the simulator needs to build one robot; `source` is the file it came from."""
+
+    name: str
+    wheel_diameter_mm: float
+    axle_track_mm: float
+    body: BodySpec
+    motors: tuple[MotorSpec, ...]
+    sensors: tuple[SensorSpec, ...]
+    color: tuple[int, int, int] = DEFAULT_ROBOT_COLOR
+    source: str | None = None
+
+    def motor(self, port: str) -> MotorSpec | None:
+        """The motor on `port` ('outB' or 'B'), or None."""
+        wanted = normalise_port(port, MOTOR_PORTS)
+        return next((m for m in self.motors if m.port == wanted), None)
+
+    def sensor(self, port: str) -> SensorSpec | None:
+        """The sensor on `port` ('in3' or '3'), or None."""
+        wanted = normalise_port(port, SENSOR_PORTS)
+        return next((s for s in self.sensors if s.port == wanted), None)
+
+    @property
+    def left_wheel(self) -> MotorSpec:
+        """The motor that drives the left wheel."""
+        return next(m for m in self.motors if m.wheel == "left")
+
+    @property
+    def right_wheel(self) -> MotorSpec:
+        """The motor that drives the right wheel."""
+        return next(m for m in self.motors if m.wheel == "right")
+
+    @property
+    def wheel_radius_cm(self) -> float:
+        return self.wheel_diameter_mm / 20.0
+
+    @property
+    def axle_track_cm(self) -> float:
+        """Distance between the two wheels' contact points."""
+        return self.axle_track_mm / 10.0
+
+
+# -- ports ------------------------------------------------------------------------
+
+
+def normalise_port(text: str | int, ports: tuple[str, ...]) -> str | None:
+    """'B', 'outB', 'ev3-ports:outB' -> 'outB'; '3', 'in3' -> 'in3'; None if not one of `ports`."""
+    word = str(text).strip()
+    if word.lower().startswith("ev3-ports:"):
+        word = word[len("ev3-ports:") :]
+    match = re.fullmatch(r"(out)?([a-dA-D])|(in)?([1-4])", word, flags=re.IGNORECASE)
+    if match is None:
+        return None
+    port = f"out{match.group(2).upper()}" if match.group(2) else f"in{match.group(4)}"
+    return port if port in ports else None
+
+
+# -- reading ------------------------------------------------------------------------
+
+_ROBOT_KEYS = ("name", "wheel_diameter_mm", "axle_track_mm", "body", "color", "motors", "sensors")
+_SENSOR_KEYS = ("port", "kind", "angle_deg", "radius_cm", "facing", "aim_deg", "noise")
+
+
+def load_robot(path: str | Path) -> RobotSpec:
+    """Read a robot file."""
+    return parse_robot(read_text_file(path), str(path))
+
+
+def parse_robot(text: str, path: str = "<string>") -> RobotSpec:
+    """Read a robot description from YAML text."""
+    node = load_yaml_text(text, path)
+    if not node.is_mapping:
+        raise node.error(f"a robot file is a mapping of keys like `name: My robot`, got {node.describe()}")
+    return robot_from_mapping(node, source=path)
+
+
+def robot_from_mapping(node: Node, source: str | None = None, default_name: str = "robot") -> RobotSpec:
+    """A robot from a YAML mapping (a robot file, or the inline `robot:` of a maze file)."""
+    fields = node.as_fields("robot", _ROBOT_KEYS)
+    name = fields.text("name", default=default_name)
+    wheel_diameter = _positive(fields, "wheel_diameter_mm", "mm", "wheel_diameter_mm: 56")
+    axle_track = _positive(fields, "axle_track_mm", "mm", "axle_track_mm: 120")
+    body = _body(fields.require("body", "body: {front_cm: 9, back_cm: 7, width_cm: 15}"))
+    color = _rgb(fields.get("color")) if "color" in fields else DEFAULT_ROBOT_COLOR
+    motors_node = fields.require(
+        "motors", "motors: [{port: B, kind: large, wheel: left}, {port: C, kind: large, wheel: right}]"
+    )
+    motors = [
+        _motor(item)
+        for item in motors_node.as_list("motors", "motors: [{port: B, kind: large, wheel: left}]")
+    ]
+    sensors_node = fields.get("sensors")
+    sensor_items = (
+        sensors_node.as_list("sensors", "sensors: [{port: 3, kind: color}]") if sensors_node else []
+    )
+    sensors = [_sensor(item) for item in sensor_items]
+    _check_one_device_per_port(motors_node, motors, sensor_items, sensors)
+    _check_wheels(motors_node, motors)
+    return RobotSpec(
+        name=name,
+        wheel_diameter_mm=wheel_diameter,
+        axle_track_mm=axle_track,
+        body=body,
+        motors=tuple(spec for spec, _ in motors),
+        sensors=tuple(sensors),
+        color=color,
+        source=source,
+    )
+
+
+def _positive(fields: Fields, name: str, unit: str, example: str) -> float:
+    value = fields.number(name, unit=unit, example=example)
+    if value <= 0:
+        raise fields.get(name).error(f"'{name}' must be more than 0 {unit}; write e.g. `{example}`")
+    return value
+
+
+def _body(node: Node) -> BodySpec:
+    fields = node.as_fields(
+        "body", ("front_cm", "back_cm", "width_cm"), "body: {front_cm: 9, back_cm: 7, width_cm: 15}"
+    )
+    front = fields.number("front_cm", unit="cm", example="front_cm: 9")
+    back = fields.number("back_cm", unit="cm", example="back_cm: 7")
+    width = _positive(fields, "width_cm", "cm", "width_cm: 15")
+    if front + back <= 0:
+        raise node.error("the body needs a length: front_cm + back_cm must be more than 0")
+    return BodySpec(front, back, width)
+
+
+def _rgb(node: Node) -> tuple[int, int, int]:
+    help_text = "a colour name, '#rrggbb' or [red, green, blue] with 0..255 each"
+    if node.is_sequence:
+        values = node.as_numbers("color", 3, example="color: [230, 170, 30]")
+        if all(0 <= v <= 255 for v in values):
+            return (round(values[0]), round(values[1]), round(values[2]))
+    elif node.is_scalar and not node.is_null:
+        word = node.text.strip().lower()
+        if word in EV3_COLORS:
+            return EV3_COLORS[word].display_rgb
+        if re.fullmatch(r"#[0-9a-f]{6}", word):
+            return (int(word[1:3], 16), int(word[3:5], 16), int(word[5:7], 16))
+    raise node.error(f"'color' must be {help_text}, got {node.describe()}")
+
+
+def _port(node: Node, ports: tuple[str, ...], device: str) -> str:
+    if not node.is_scalar or node.is_null:
+        raise node.error(f"'port' must be a port name such as {ports[0]}, got {node.describe()}")
+    port = normalise_port(node.text, ports)
+    if port is not None:
+        return port
+    short = "A..D" if ports == MOTOR_PORTS else "1..4"
+    other = SENSOR_PORTS if ports == MOTOR_PORTS else MOTOR_PORTS
+    if normalise_port(node.text, other) is not None:
+        plug = "output" if ports == MOTOR_PORTS else "input"
+        return_hint = f"{device}s plug into {plug} ports"
+    else:
+        return_hint = "the EV3 has no such port"
+    raise node.error(
+        f"unknown {device} port {node.describe()}: {return_hint}; write one of {', '.join(ports)} (or just {short})"
+    )
+
+
+def _choice(fields: Fields, name: str, choices: tuple[str, ...], default: Any = None) -> str:
+    node = fields.get(name)
+    if node is None:
+        if default is None:
+            fields.require(name, f"{name}: {choices[0]}")
+        return default
+    word = node.as_text(name, f"{name}: {choices[0]}").strip().lower()
+    if word not in choices:
+        close = difflib.get_close_matches(word, choices, n=1)
+        hint = f"did you mean '{close[0]}'? " if close else ""
+        raise node.error(f"unknown {name} {node.describe()}; {hint}write one of {', '.join(choices)}")
+    return word
+
+
+def _motor(node: Node) -> tuple[MotorSpec, Node]:
+    fields = node.as_fields("motor", ("port", "kind", "wheel"), "- {port: B, kind: large, wheel: left}")
+    port = _port(fields.require("port", "port: B"), MOTOR_PORTS, "motor")
+    kind = _choice(fields, "kind", MOTOR_KINDS, default="large")
+    wheel_node = fields.get("wheel")
+    wheel = None
+    if wheel_node is not None and not wheel_node.is_null and wheel_node.text.strip().lower() != "none":
+        wheel = _choice(fields, "wheel", WHEELS)
+    return MotorSpec(port, kind, wheel), node
+
+
+def _sensor(node: Node) -> SensorSpec:
+    fields = node.as_fields("sensor", None, "- {port: 3, kind: color, angle_deg: 0, radius_cm: 7}")
+    port = _port(fields.require("port", "port: 3"), SENSOR_PORTS, "sensor")
+    kind = _choice(fields, "kind", SENSOR_KINDS)
+    option_table = SENSOR_OPTIONS[kind]
+    fields.check_keys(_SENSOR_KEYS + tuple(option_table))
+    facing = _choice(fields, "facing", FACINGS, default=DEFAULT_FACING[kind])
+    angle = fields.number("angle_deg", default=0.0, unit="degrees", example="angle_deg: 0")
+    radius = fields.number("radius_cm", default=0.0, unit="cm", example="radius_cm: 7")
+    if radius < 0:
+        raise fields.get("radius_cm").error(
+            "'radius_cm' is a distance from the robot centre and cannot be negative"
+        )
+    aim = fields.number("aim_deg", default=0.0, unit="degrees", example="aim_deg: 90")
+    if "aim_deg" in fields and facing != "forward":
+        raise fields.key("aim_deg").error(
+            "'aim_deg' turns a sensor that faces forward; remove it or write `facing: forward`"
+        )
+    noise = fields.number("noise", default=0.0, example="noise: 0.5")
+    if noise < 0:
+        raise fields.get("noise").error(
+            "'noise' is a standard deviation and cannot be negative; 0 turns noise off"
+        )
+    options: dict[str, float] = {}
+    for option, (default, unit, _meaning) in option_table.items():
+        value = fields.number(option, default=default, unit=unit, example=f"{option}: {default:g}")
+        if value <= 0:
+            raise fields.get(option).error(f"'{option}' must be more than 0 {unit}")
+        options[option] = value
+    return SensorSpec(port, kind, angle, radius, facing, noise, options, aim)
+
+
+def _check_one_device_per_port(
+    motors_node: Node,
+    motors: list[tuple[MotorSpec, Node]],
+    sensor_items: list[Node],
+    sensors: list[SensorSpec],
+) -> None:
+    seen: dict[str, Node] = {}
+    pairs = [(spec.port, item) for spec, item in motors] + [
+        (spec.port, item) for spec, item in zip(sensors, sensor_items, strict=True)
+    ]
+    for port, item in pairs:
+        if port in seen:
+            raise item.error(
+                f"port {port} already has a device (line {seen[port].line}); each port takes one motor or sensor"
+            )
+        seen[port] = item
+
+
+def _check_wheels(motors_node: Node, motors: list[tuple[MotorSpec, Node]]) -> None:
+    for side, example in (
+        ("left", "- {port: B, kind: large, wheel: left}"),
+        ("right", "- {port: C, kind: large, wheel: right}"),
+    ):
+        drivers = [item for spec, item in motors if spec.wheel == side]
+        if not drivers:
+            raise motors_node.error(
+                f"no motor drives the {side} wheel; add `wheel: {side}` to a motor, e.g. `{example}`"
+            )
+        if len(drivers) > 1:
+            raise drivers[1].error(
+                f"two motors drive the {side} wheel (the first on line {drivers[0].line}); a robot has one {side} wheel motor"
+            )
+
+
+# -- shipped robots ---------------------------------------------------------------------
+
+
+def shipped_robots_dir() -> Path:
+    """The folder of robot files that come with ev3sim2d."""
+    return Path(__file__).resolve().parents[1] / "robots"
+
+
+DEFAULT_ROBOT_FILE = "ev3-driving-base.yaml"
+
+
+@functools.lru_cache(maxsize=1)
+def _default_robot() -> RobotSpec:
+    return load_robot(shipped_robots_dir() / DEFAULT_ROBOT_FILE)
+
+
+def default_robot() -> RobotSpec:
+    """The EV3 Education driving base (read once; each call gets its own copy)."""
+    return copy.deepcopy(_default_robot())
+
+
+def find_robot(name_or_path: str, base_dir: Path | None = None) -> Path | None:
+    """A robot file: a path (relative to `base_dir` first), else a shipped robot by name; None if neither."""
+    candidate = Path(name_or_path)
+    places = [base_dir / candidate] if base_dir is not None and not candidate.is_absolute() else []
+    places.append(candidate)
+    stem = candidate.name if candidate.suffix in (".yaml", ".yml") else candidate.name + ".yaml"
+    places.append(shipped_robots_dir() / stem)
+    return next((place for place in places if place.is_file()), None)
+
+
+def shipped_robot_names() -> list[str]:
+    """Names of the robot files that come with ev3sim2d."""
+    return sorted(p.stem for p in shipped_robots_dir().glob("*.yaml"))

@@ -1,0 +1,295 @@
+"""YAML read with line numbers kept, so every mistake in a world file can name its line.
+
+`load_yaml_text` composes the YAML into `Node`s (a value plus where it was
+written); `Fields` reads a mapping key by key with typed accessors that turn a
+missing key, a wrong type or an unknown key (usually a typo) into a
+`WorldFileError` that says what to write instead.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Iterable, Iterator
+from pathlib import Path
+from typing import Any
+
+import yaml
+from yaml.constructor import SafeConstructor
+
+from .source_error import WorldFileError
+
+_MAP_TAG = "tag:yaml.org,2002:map"
+_SEQ_TAG = "tag:yaml.org,2002:seq"
+_NULL_TAG = "tag:yaml.org,2002:null"
+_BOOL_TAG = "tag:yaml.org,2002:bool"
+_INT_TAG = "tag:yaml.org,2002:int"
+_FLOAT_TAG = "tag:yaml.org,2002:float"
+_STR_TAG = "tag:yaml.org,2002:str"
+
+_REQUIRED: Any = object()
+
+
+class Node:
+    """One YAML value together with the file, line and column where it was written."""
+
+    __slots__ = ("raw", "path")
+
+    def __init__(self, raw: yaml.Node, path: str) -> None:
+        self.raw = raw
+        self.path = path
+
+    # -- where -----------------------------------------------------------------
+    @property
+    def line(self) -> int:
+        """1-based line where the value starts."""
+        return self.raw.start_mark.line + 1
+
+    @property
+    def column(self) -> int:
+        """1-based column where the value starts."""
+        return self.raw.start_mark.column + 1
+
+    def error(self, message: str, *, column: bool = True) -> WorldFileError:
+        """An error pointing at this value."""
+        return WorldFileError(self.path, self.line, self.column if column else None, message)
+
+    # -- what ------------------------------------------------------------------
+    @property
+    def is_mapping(self) -> bool:
+        return isinstance(self.raw, yaml.MappingNode)
+
+    @property
+    def is_sequence(self) -> bool:
+        return isinstance(self.raw, yaml.SequenceNode)
+
+    @property
+    def is_scalar(self) -> bool:
+        return isinstance(self.raw, yaml.ScalarNode)
+
+    @property
+    def is_null(self) -> bool:
+        return self.is_scalar and self.raw.tag == _NULL_TAG
+
+    @property
+    def text(self) -> str:
+        """The scalar as written in the file (without quotes), e.g. '3' for `3`."""
+        if not self.is_scalar:
+            raise self.error(f"expected a single value here, got {self.describe()}")
+        return self.raw.value
+
+    @property
+    def style(self) -> str | None:
+        """The scalar style: None (plain), "'", '"', '|' or '>'."""
+        return getattr(self.raw, "style", None)
+
+    def value(self) -> Any:
+        """The plain Python value (dicts, lists, numbers, strings)."""
+        return SafeConstructor().construct_object(self.raw, deep=True)
+
+    def describe(self) -> str:
+        """How the value reads in a message: 'ten', nothing, a list, a mapping."""
+        if self.is_mapping:
+            return "a mapping"
+        if self.is_sequence:
+            return "a list"
+        if self.is_null:
+            return "nothing"
+        return repr(self.raw.value)
+
+    # -- typed reads -------------------------------------------------------------
+    def as_number(self, name: str, unit: str = "", example: str | None = None) -> float:
+        """A finite int or float; `unit` goes into the message ('cm', 'degrees')."""
+        tag = self.raw.tag if self.is_scalar else None
+        if tag in (_INT_TAG, _FLOAT_TAG):
+            number = float(self.value())
+            if math.isfinite(number):
+                return number
+        kind = f"a number ({unit})" if unit else "a number"
+        raise self.error(f"'{name}' must be {kind}, got {self.describe()}{_write(example)}")
+
+    def as_int(self, name: str, example: str | None = None) -> int:
+        """A whole number (a float such as 3.0 is accepted)."""
+        number = self.as_number(name, example=example)
+        if number != int(number):
+            raise self.error(f"'{name}' must be a whole number, got {self.describe()}{_write(example)}")
+        return int(number)
+
+    def as_text(self, name: str, example: str | None = None) -> str:
+        """A string; numbers and words written without quotes count too, nothing does not."""
+        if self.is_scalar and not self.is_null and self.raw.tag != _BOOL_TAG:
+            return self.raw.value
+        raise self.error(f"'{name}' must be text, got {self.describe()}{_write(example)}")
+
+    def as_bool(self, name: str) -> bool:
+        """true or false."""
+        if self.is_scalar and self.raw.tag == _BOOL_TAG:
+            return bool(self.value())
+        raise self.error(f"'{name}' must be true or false, got {self.describe()}")
+
+    def as_list(self, name: str, example: str | None = None) -> list[Node]:
+        """The items of a YAML list (nothing reads as an empty list)."""
+        if self.is_null:
+            return []
+        if not self.is_sequence:
+            raise self.error(f"'{name}' must be a list, got {self.describe()}{_write(example)}")
+        return [Node(item, self.path) for item in self.raw.value]
+
+    def as_fields(self, name: str, allowed: Iterable[str], example: str | None = None) -> Fields:
+        """The value as a mapping whose keys must be among `allowed` (nothing reads as empty)."""
+        if not (self.is_mapping or self.is_null):
+            raise self.error(
+                f"'{name}' must be a mapping of 'key: value' lines, got {self.describe()}{_write(example)}"
+            )
+        return Fields(self, f"'{name}'", allowed)
+
+    def as_numbers(self, name: str, count: int, unit: str = "", example: str | None = None) -> list[float]:
+        """A list of exactly `count` numbers, e.g. `[3, 5]`."""
+        items = self.as_list(name, example)
+        if len(items) != count:
+            raise self.error(
+                f"'{name}' must be a list of {count} numbers, got {len(items)} items{_write(example)}"
+            )
+        return [item.as_number(name, unit, example) for item in items]
+
+
+class Fields:
+    """A YAML mapping read key by key; unknown keys are refused with the allowed ones listed."""
+
+    def __init__(self, node: Node, where: str, allowed: Iterable[str] | None) -> None:
+        self.node = node
+        self.where = where
+        self._keys: dict[str, Node] = {}
+        self._values: dict[str, Node] = {}
+        if node.is_null:
+            return
+        for key_raw, value_raw in node.raw.value:
+            key = Node(key_raw, node.path)
+            if not key.is_scalar or key.is_null:
+                raise key.error(f"a key in {where} must be a plain word, got {key.describe()}")
+            name = key.text
+            if name in self._keys:
+                first = self._keys[name].line
+                raise key.error(f"key '{name}' appears twice in {where} (first on line {first}); keep one")
+            self._keys[name] = key
+            self._values[name] = Node(value_raw, node.path)
+        if allowed is not None:
+            self.check_keys(allowed)
+
+    def check_keys(self, allowed: Iterable[str]) -> None:
+        """Refuse keys not in `allowed`, suggesting the nearest allowed one."""
+        allowed = list(allowed)
+        for name, key in self._keys.items():
+            if name not in allowed:
+                close = difflib.get_close_matches(name, allowed, n=1)
+                hint = f"did you mean '{close[0]}'? " if close else ""
+                listed = ", ".join(allowed)
+                raise key.error(f"unknown key '{name}' in {self.where}; {hint}allowed keys: {listed}")
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._values
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._values)
+
+    def __len__(self) -> int:
+        return len(self._values)
+
+    def items(self) -> list[tuple[Node, Node]]:
+        """(key node, value node) pairs in file order."""
+        return [(self._keys[name], self._values[name]) for name in self._values]
+
+    def key(self, name: str) -> Node:
+        """The node of the key itself (for errors that point at the key)."""
+        return self._keys[name]
+
+    def get(self, name: str) -> Node | None:
+        """The value of an optional key, or None when it is not written."""
+        return self._values.get(name)
+
+    def require(self, name: str, example: str) -> Node:
+        """The value of a required key; `example` is a line to suggest, e.g. 'cell_cm: 10'."""
+        node = self._values.get(name)
+        if node is None:
+            raise self.node.error(f"missing key '{name}' in {self.where}; add e.g. `{example}`", column=False)
+        return node
+
+    def number(
+        self, name: str, default: Any = _REQUIRED, unit: str = "", example: str | None = None
+    ) -> float:
+        """A number under `name` (required unless a default is given)."""
+        node = self._lookup(name, default, example or f"{name}: 10")
+        return default if node is None else node.as_number(name, unit, example)
+
+    def integer(self, name: str, default: Any = _REQUIRED, example: str | None = None) -> int:
+        """A whole number under `name`."""
+        node = self._lookup(name, default, example or f"{name}: 1")
+        return default if node is None else node.as_int(name, example)
+
+    def text(self, name: str, default: Any = _REQUIRED, example: str | None = None) -> str:
+        """Text under `name`."""
+        node = self._lookup(name, default, example or f"{name}: ...")
+        return default if node is None else node.as_text(name, example)
+
+    def boolean(self, name: str, default: Any = _REQUIRED) -> bool:
+        """true/false under `name`."""
+        node = self._lookup(name, default, f"{name}: true")
+        return default if node is None else node.as_bool(name)
+
+    def _lookup(self, name: str, default: Any, example: str) -> Node | None:
+        if default is _REQUIRED:
+            return self.require(name, example)
+        return self._values.get(name)
+
+
+def load_yaml_text(text: str, path: str = "<string>") -> Node:
+    """Compose YAML text into a Node tree; syntax errors become WorldFileError with the line."""
+    try:
+        raw = yaml.compose(text, Loader=yaml.SafeLoader)
+    except yaml.MarkedYAMLError as err:
+        raise _syntax_error(err, path) from None
+    except yaml.YAMLError as err:
+        raise WorldFileError(path, None, None, f"this is not readable YAML text ({err})") from None
+    if raw is None:
+        raise WorldFileError(path, 1, None, "the file is empty; write its keys, e.g. `title: My world`")
+    return Node(raw, path)
+
+
+def read_text_file(path: str | Path) -> str:
+    """A file's text, with a missing or unreadable file reported as WorldFileError."""
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise WorldFileError(str(path), None, None, "no such file; check the name and folder") from None
+    except IsADirectoryError:
+        raise WorldFileError(
+            str(path), None, None, "this is a folder; give the path of a .yaml file"
+        ) from None
+    except UnicodeDecodeError as err:
+        raise WorldFileError(
+            str(path), None, None, f"not UTF-8 text (byte {err.start}); save the file as UTF-8"
+        ) from None
+    except OSError as err:
+        raise WorldFileError(str(path), None, None, f"cannot read the file: {err.strerror}") from None
+
+
+def _syntax_error(err: yaml.MarkedYAMLError, path: str) -> WorldFileError:
+    mark = err.problem_mark or err.context_mark
+    line = mark.line + 1 if mark is not None else None
+    column = mark.column + 1 if mark is not None else None
+    problem = err.problem or "cannot read this"
+    if err.context and err.context_mark is not None and err.context_mark is not mark:
+        problem = f"{problem} ({err.context} on line {err.context_mark.line + 1})"
+    if "'\\t'" in problem:
+        hint = "indent with spaces, not tabs"
+    elif "mapping values are not allowed" in problem:
+        hint = "check the indentation, and put quotes around a value that contains ': '"
+    elif "expected a single document" in problem:
+        hint = "a world file holds one document; remove the extra '---' line"
+    else:
+        hint = "check the indentation, and put quotes around text that starts with '#', '[', '{', '*' or '&'"
+    return WorldFileError(path, line, column, f"YAML syntax error: {problem}; {hint}")
+
+
+def _write(example: str | None) -> str:
+    return f"; write e.g. `{example}`" if example else ""
