@@ -3,7 +3,7 @@
 import math
 import sys
 
-from conftest import arena
+from tests.inline_world import arena
 
 WHEEL_CIRCUMFERENCE_CM = math.pi * 5.6
 

@@ -1,6 +1,6 @@
 """Sensors read the world: colour under the spot, distance ahead, bumper, noise."""
 
-from conftest import arena
+from tests.inline_world import arena
 
 from ev3sim2d.simulation import Simulation
 

@@ -85,7 +85,19 @@ class Node:
 
     def value(self) -> Any:
         """The plain Python value (dicts, lists, numbers, strings)."""
-        return SafeConstructor().construct_object(self.raw, deep=True)
+        try:
+            return SafeConstructor().construct_object(self.raw, deep=True)
+        except (ValueError, KeyError, TypeError, yaml.YAMLError) as err:
+            raise self.error(
+                f"cannot read this value ({err}); remove the '!!' tag or fix the value"
+            ) from None
+
+    def _scalar_value(self) -> Any:
+        """The constructed scalar, or None when its tag does not fit its text (e.g. `!!int abc`)."""
+        try:
+            return SafeConstructor().construct_object(self.raw, deep=True)
+        except (ValueError, KeyError, yaml.YAMLError):
+            return None
 
     def describe(self) -> str:
         """How the value reads in a message: 'ten', nothing, a list, a mapping."""
@@ -102,7 +114,10 @@ class Node:
         """A finite int or float; `unit` goes into the message ('cm', 'degrees')."""
         tag = self.raw.tag if self.is_scalar else None
         if tag in (_INT_TAG, _FLOAT_TAG):
-            number = float(self.value())
+            try:
+                number = float(self._scalar_value())
+            except (TypeError, OverflowError):
+                number = math.inf
             if math.isfinite(number):
                 return number
         kind = f"a number ({unit})" if unit else "a number"
@@ -124,7 +139,9 @@ class Node:
     def as_bool(self, name: str) -> bool:
         """true or false."""
         if self.is_scalar and self.raw.tag == _BOOL_TAG:
-            return bool(self.value())
+            value = self._scalar_value()
+            if value is not None:
+                return bool(value)
         raise self.error(f"'{name}' must be true or false, got {self.describe()}")
 
     def as_list(self, name: str, example: str | None = None) -> list[Node]:
