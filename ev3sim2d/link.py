@@ -44,22 +44,35 @@ class ShimLink:
             )
         return task.owner
 
+    def _device(self, class_name: str, device_name: str):
+        try:
+            return self._task_by_thread[get_ident()].owner.brick.classes[class_name][device_name]
+        except KeyError:
+            return self._robot().brick.device(class_name, device_name)  # the right error
+
     def list_device_names(self, class_name: str, name_pattern: str, match: dict) -> list[str]:
         names = self._robot().brick.list_device_names(class_name, name_pattern, match)
         self.scheduler.spend(FIND_US)
         return names
 
     def read(self, class_name: str, device_name: str, attribute: str) -> str:
-        value = self._robot().brick.device(class_name, device_name).read(attribute)
+        device = self._device(class_name, device_name)
+        reader = device.readers.get(attribute)
+        value = reader() if reader is not None else device.read(attribute)
         self.scheduler.spend(READ_US)
         return value
 
     def write(self, class_name: str, device_name: str, attribute: str, value: str) -> None:
-        self._robot().brick.device(class_name, device_name).write(attribute, value)
+        device = self._device(class_name, device_name)
+        writer = device.writers.get(attribute)
+        if writer is not None:
+            writer(value)
+        else:
+            device.write(attribute, value)
         self.scheduler.spend(WRITE_US)
 
     def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:
-        device = self._robot().brick.device(class_name, device_name)
+        device = self._device(class_name, device_name)
         before = device.read(attribute)
         timeout_us = None if timeout_ms is None else int(timeout_ms * 1000)
         self.scheduler.wait(lambda: device.read(attribute) != before, timeout_us)

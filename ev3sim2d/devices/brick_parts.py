@@ -15,14 +15,14 @@ class Led(Device):
         self.name = name
         self.brightness = 0
         self.trigger = "none"
-        self._readers.update(
+        self.readers.update(
             brightness=lambda: str(self.brightness),
             max_brightness=lambda: "255",
             trigger=lambda: " ".join(f"[{t}]" if t == self.trigger else t for t in ("none", "timer", "heartbeat")),
         )
-        self._writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
-        self._readers.pop("address")
-        self._readers.pop("driver_name")
+        self.writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
+        self.readers.pop("address")
+        self.readers.pop("driver_name")
 
     def _set_brightness(self, value: str) -> None:
         b = parse_int(value)
@@ -42,7 +42,7 @@ class Battery(Device):
     def __init__(self) -> None:
         super().__init__("", "")
         self.name = "lego-ev3-battery"
-        self._readers.update(
+        self.readers.update(
             voltage_now=lambda: "7800000",
             current_now=lambda: "180000",
             voltage_max_design=lambda: "8400000",

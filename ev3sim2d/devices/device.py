@@ -1,6 +1,6 @@
 """A simulated device as the ev3dev drivers show it: named attributes read and written as text.
 
-Each kind of device lists its attributes in `_readers` / `_writers` (name ->
+Each kind of device lists its attributes in `readers` / `writers` (name ->
 method).  Errors are the OSErrors a sysfs file would give, so the shim turns
 them into the exceptions python-ev3dev2 raises on a real brick.
 """
@@ -32,27 +32,24 @@ class Device:
     def __init__(self, address: str, driver_name: str) -> None:
         self.address = address
         self.driver_name = driver_name
-        self._readers: dict[str, Callable[[], str]] = {
+        self.readers: dict[str, Callable[[], str]] = {
             "address": lambda: self.address,
             "driver_name": lambda: self.driver_name,
         }
-        self._writers: dict[str, Callable[[str], None]] = {}
+        self.writers: dict[str, Callable[[str], None]] = {}
 
     def read(self, attribute: str) -> str:
-        reader = self._readers.get(attribute)
+        reader = self.readers.get(attribute)
         if reader is None:
-            if attribute in self._writers:
+            if attribute in self.writers:
                 raise OSError(errno.EACCES, f"{attribute} is write-only")
             raise OSError(errno.ENOENT, f"No such attribute: {attribute}")
         return reader()
 
     def write(self, attribute: str, value: str) -> None:
-        writer = self._writers.get(attribute)
+        writer = self.writers.get(attribute)
         if writer is None:
-            if attribute in self._readers:
+            if attribute in self.readers:
                 raise OSError(errno.EACCES, f"{attribute} is read-only")
             raise OSError(errno.ENOENT, f"No such attribute: {attribute}")
         writer(value)
-
-    def has_attribute(self, attribute: str) -> bool:
-        return attribute in self._readers or attribute in self._writers

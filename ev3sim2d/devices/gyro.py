@@ -27,7 +27,7 @@ class GyroSensor(LegoSensor):
     def __init__(self, address, spec, surroundings) -> None:
         super().__init__(address, spec, surroundings)
         self.zero_rad = surroundings.heading_rad
-        self._writers["direct"] = self._direct
+        self.writers["direct"] = self._direct
 
     def _direct(self, value: str) -> None:
         if value.encode("latin-1") != b"\x11":

@@ -52,7 +52,7 @@ class TachoMotor(Device):
         self.max_speed = max_speed
         self.count_per_rot = 360
         self._reset()
-        r, w = self._readers, self._writers
+        r, w = self.readers, self.writers
         r.update(
             commands=lambda: " ".join(COMMANDS),
             count_per_rot=lambda: str(self.count_per_rot),

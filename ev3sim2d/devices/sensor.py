@@ -59,7 +59,7 @@ class LegoSensor(Device):
         self._sample_tick = -1
         self._sample_mode = ""
         self._sample: tuple[int, ...] = ()
-        r, w = self._readers, self._writers
+        r, w = self.readers, self.writers
         r.update(
             mode=lambda: self.mode,
             modes=lambda: " ".join(self.MODES),
