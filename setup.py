@@ -22,8 +22,12 @@ class BuildWithWorldsAndShim(build_py):
             return
         target = Path(self.build_lib) / "ev3sim2d"
         shutil.copytree(ROOT / "mazes", target / "_mazes", dirs_exist_ok=True)
-        shutil.copytree(ROOT / "ev3dev2", target / "_shim" / "ev3dev2", dirs_exist_ok=True,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc"))
+        shutil.copytree(
+            ROOT / "ev3dev2",
+            target / "_shim" / "ev3dev2",
+            dirs_exist_ok=True,
+            ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+        )
 
 
 setup(cmdclass={"build_py": BuildWithWorldsAndShim})

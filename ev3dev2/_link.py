@@ -24,8 +24,7 @@ and cost the virtual time a real EV3 would spend on them.
 _backend = None
 
 OUTSIDE_MESSAGE = (
-    "this program uses EV3 devices, so it must run inside the simulator: "
-    "ev3sim2d run PROGRAM.py --maze empty"
+    "this program uses EV3 devices, so it must run inside the simulator: ev3sim2d run PROGRAM.py --maze empty"
 )
 
 

@@ -14,7 +14,12 @@ import fnmatch
 from .devices.brick_parts import Battery, Led
 from .devices.device import Device
 
-LED_NAMES = ("led0:red:brick-status", "led1:red:brick-status", "led0:green:brick-status", "led1:green:brick-status")
+LED_NAMES = (
+    "led0:red:brick-status",
+    "led1:red:brick-status",
+    "led0:green:brick-status",
+    "led1:green:brick-status",
+)
 
 
 class Brick:

@@ -27,17 +27,31 @@ def _parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="run a program (or several, one robot each) in a world")
     run.add_argument("programs", nargs="+", metavar="PROG", help="python-ev3dev2 program file(s)")
-    run.add_argument("--maze", default="empty", help="world file, or the name of a shipped world (default: empty)")
+    run.add_argument(
+        "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
+    )
     run.add_argument("--robot", metavar="FILE", help="robot description file (default: the world's robot)")
-    run.add_argument("--time", type=float, default=60.0, metavar="S",
-                     help="stop after S seconds of simulated time (default: 60)")
-    run.add_argument("--seed", type=int, default=0, help="seed for sensor noise and the program's random (default: 0)")
+    run.add_argument(
+        "--time",
+        type=float,
+        default=60.0,
+        metavar="S",
+        help="stop after S seconds of simulated time (default: 60)",
+    )
+    run.add_argument(
+        "--seed", type=int, default=0, help="seed for sensor noise and the program's random (default: 0)"
+    )
     run.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
     run.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
     run.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
     run.add_argument("--quiet", action="store_true", help="do not echo what the program prints")
-    run.add_argument("--hang-after", type=float, default=5.0, metavar="S",
-                     help="stop a program that spins S real seconds without using the robot or the clock (default: 5)")
+    run.add_argument(
+        "--hang-after",
+        type=float,
+        default=5.0,
+        metavar="S",
+        help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
+    )
 
     sub.add_parser("mazes", help="list the shipped worlds")
     return parser
@@ -93,10 +107,17 @@ def _cmd_run(args) -> int:
         print(f"ev3sim2d: error: could not write the outputs: {err}", file=sys.stderr)
         return EXIT_USAGE
     speed = result.sim_time_s / result.wall_time_s if result.wall_time_s > 0 else float("inf")
-    print(f"ev3sim2d: {result.reason} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
-          file=sys.stderr)
-    code = {"finished": EXIT_OK, "time_limit": EXIT_OK, "error": EXIT_PROGRAM_ERROR,
-            "hung": EXIT_HUNG, "interrupted": EXIT_INTERRUPTED}[result.status]
+    print(
+        f"ev3sim2d: {result.reason} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
+        file=sys.stderr,
+    )
+    code = {
+        "finished": EXIT_OK,
+        "time_limit": EXIT_OK,
+        "error": EXIT_PROGRAM_ERROR,
+        "hung": EXIT_HUNG,
+        "interrupted": EXIT_INTERRUPTED,
+    }[result.status]
     if any(not t.done for t in result.tasks):  # a program thread that would not stop
         sys.stdout.flush()
         sys.stderr.flush()

@@ -82,6 +82,8 @@ class ShimLink:
         if feature == "buttons":
             return []
         if feature == "sound":
-            self.sounds.append((self.scheduler.now_s, args[0] if args else "", args[1:] if len(args) > 1 else None))
+            self.sounds.append(
+                (self.scheduler.now_s, args[0] if args else "", args[1:] if len(args) > 1 else None)
+            )
             return None
         return None

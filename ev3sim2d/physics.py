@@ -128,7 +128,9 @@ class Physics:
     def ray(self, x: float, y: float, direction: float, max_cm: float, group: int) -> float | None:
         """Distance from (x, y) along direction to the first wall or other robot, if within max_cm."""
         end = (x + max_cm * math.cos(direction), y + max_cm * math.sin(direction))
-        hit = lib.cpSpaceSegmentQueryFirst(self._cp_space, (x, y), end, 0.0, self._filters[group], self._query)
+        hit = lib.cpSpaceSegmentQueryFirst(
+            self._cp_space, (x, y), end, 0.0, self._filters[group], self._query
+        )
         return None if hit == ffi.NULL else self._query.alpha * max_cm
 
     def near(self, x: float, y: float, reach_cm: float, group: int) -> bool:

@@ -38,8 +38,10 @@ PRINT_US = 1_000
 MAX_RECORDED_LINES = 5_000
 
 _real_start_new_thread = _thread.start_new_thread
-_real = {name: getattr(time, name) for name in
-         ("sleep", "time", "monotonic", "perf_counter", "time_ns", "monotonic_ns", "perf_counter_ns")}
+_real = {
+    name: getattr(time, name)
+    for name in ("sleep", "time", "monotonic", "perf_counter", "time_ns", "monotonic_ns", "perf_counter_ns")
+}
 
 
 class ProgramError(Exception):
@@ -137,8 +139,16 @@ class ProgramOutput(io.TextIOBase):
 class SimulatedEnvironment:
     """Everything a program sees changed while it runs in the simulator; undone on exit."""
 
-    def __init__(self, scheduler: Scheduler, link, trace: Trace, robots: list, seed: int,
-                 program_dirs: list[Path], echo: Callable[[OutputLine], None] | None = None) -> None:
+    def __init__(
+        self,
+        scheduler: Scheduler,
+        link,
+        trace: Trace,
+        robots: list,
+        seed: int,
+        program_dirs: list[Path],
+        echo: Callable[[OutputLine], None] | None = None,
+    ) -> None:
         self.scheduler = scheduler
         self.link = link
         self.trace = trace
@@ -191,15 +201,17 @@ class SimulatedEnvironment:
         if current is None:
             return _real_start_new_thread(function, args, kwargs or {})
         name = f"{current.name}-thread{len(self.scheduler.tasks)}"
-        task = self.scheduler.spawn(name, current.owner, lambda: function(*args, **(kwargs or {})),
-                                    _real_start_new_thread)
+        task = self.scheduler.spawn(
+            name, current.owner, lambda: function(*args, **(kwargs or {})), _real_start_new_thread
+        )
         return id(task)
 
     # --------------------------------------------------------- enter/exit
     def __enter__(self) -> SimulatedEnvironment:
         s = self.scheduler
-        self._saved_modules = {k: sys.modules.pop(k) for k in list(sys.modules)
-                               if k == "ev3dev2" or k.startswith("ev3dev2.")}
+        self._saved_modules = {
+            k: sys.modules.pop(k) for k in list(sys.modules) if k == "ev3dev2" or k.startswith("ev3dev2.")
+        }
         self._finder = ShimFinder(shim_root())
         sys.meta_path.insert(0, self._finder)
         self._shim_link = importlib.import_module("ev3dev2._link")

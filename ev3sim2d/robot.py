@@ -36,7 +36,9 @@ def body_outline(spec: RobotSpec) -> list[tuple[float, float]]:
 class Robot:
     """A robot in the world: pose, wheels, devices; the Surroundings its sensors measure."""
 
-    def __init__(self, name: str, spec: RobotSpec, start: Pose, physics: Physics, floor, rng, ambient: float) -> None:
+    def __init__(
+        self, name: str, spec: RobotSpec, start: Pose, physics: Physics, floor, rng, ambient: float
+    ) -> None:
         self.name = name
         self.spec = spec
         self.start = start

@@ -100,8 +100,9 @@ def run_programs(
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
     scheduler = Scheduler(sim.tick_us, sim.tick, limit_us)
     link = ShimLink(scheduler)
-    env = SimulatedEnvironment(scheduler, link, sim.trace, sim.robots, seed,
-                               sorted({p.path.resolve().parent for p in loaded}), echo)
+    env = SimulatedEnvironment(
+        scheduler, link, sim.trace, sim.robots, seed, sorted({p.path.resolve().parent for p in loaded}), echo
+    )
     tasks = []
     wall_start = _real_perf_counter()
     status_override = None
@@ -138,7 +139,9 @@ def _watch(scheduler: Scheduler, hang_after_s: float) -> str | None:
 def _interrupt(scheduler: Scheduler, exc_type: type) -> None:
     for task in scheduler.tasks:
         if not task.done and task.thread_id is not None:
-            ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(task.thread_id), ctypes.py_object(exc_type))
+            ctypes.pythonapi.PyThreadState_SetAsyncExc(
+                ctypes.c_ulong(task.thread_id), ctypes.py_object(exc_type)
+            )
 
 
 def _stop_hung(scheduler: Scheduler) -> None:
@@ -165,8 +168,10 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
                 error["robot"] = task.owner.name
     if status_override == "hung":
         status = "hung"
-        reason = (f"stopped: the program ran for a while without using the robot or the clock "
-                  f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s")
+        reason = (
+            f"stopped: the program ran for a while without using the robot or the clock "
+            f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
+        )
     elif status_override == "interrupted":
         status, reason = "interrupted", f"interrupted at {t:.2f} s"
     elif error is not None:
@@ -177,9 +182,14 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
         status, reason = "time_limit", f"ran until the time limit of {t:.2f} s"
     else:
         status, reason = "finished", f"finished at {t:.2f} s"
-    sim.trace.result = {"status": status, "reason": reason, "sim_time_s": t,
-                        "error_type": error["type"] if error else None, "error": error,
-                        "dropped_output_lines": dropped_lines}
+    sim.trace.result = {
+        "status": status,
+        "reason": reason,
+        "sim_time_s": t,
+        "error_type": error["type"] if error else None,
+        "error": error,
+        "dropped_output_lines": dropped_lines,
+    }
     return RunResult(status, reason, t, wall, sim.trace, error, sim.robots, scheduler.tasks)
 
 

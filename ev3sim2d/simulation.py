@@ -39,8 +39,14 @@ class Floor:
 
     @classmethod
     def of(cls, grid: Grid) -> Floor:
-        return cls(grid.cell_cm, grid.width, grid.height, grid.reflected_rows(), grid.color_id_rows(),
-                   grid.raw_rgb_rows())
+        return cls(
+            grid.cell_cm,
+            grid.width,
+            grid.height,
+            grid.reflected_rows(),
+            grid.color_id_rows(),
+            grid.raw_rgb_rows(),
+        )
 
 
 class StartBlocked(ValueError):
@@ -50,8 +56,9 @@ class StartBlocked(ValueError):
 class Simulation:
     """A world with its robots, advanced one tick at a time."""
 
-    def __init__(self, world: World, robots: list[tuple[str, RobotSpec, Pose]], seed: int = 0,
-                 tick_us: int = TICK_US) -> None:
+    def __init__(
+        self, world: World, robots: list[tuple[str, RobotSpec, Pose]], seed: int = 0, tick_us: int = TICK_US
+    ) -> None:
         self.world = world
         self.tick_us = tick_us
         self.dt = tick_us / 1e6
@@ -59,7 +66,9 @@ class Simulation:
         self.physics = Physics(world.grid.wall_rectangles())
         floor = Floor.of(world.grid)
         ambient = float(getattr(world, "ambient", 10.0) or 10.0)
-        self.robots = [Robot(name, spec, pose, self.physics, floor, self.rng, ambient) for name, spec, pose in robots]
+        self.robots = [
+            Robot(name, spec, pose, self.physics, floor, self.rng, ambient) for name, spec, pose in robots
+        ]
         for robot in self.robots:
             if self.physics.overlaps_wall(robot.body):
                 p = robot.start
@@ -99,7 +108,11 @@ class Simulation:
             robot.after_step(dt)
             row += (robot.x, robot.y, robot.heading_rad * DEGREES, 1.0 if robot.body.touching else 0.0)
             for motor in robot.motors.values():
-                row += (motor.shaft_deg * motor.sign + motor.offset, motor.speed_dps * motor.sign, motor.state_bits)
+                row += (
+                    motor.shaft_deg * motor.sign + motor.offset,
+                    motor.speed_dps * motor.sign,
+                    motor.state_bits,
+                )
         t = now_us / 1e6
         self.trace.add_tick(t, row)
         self.ticks += 1

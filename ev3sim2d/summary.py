@@ -22,7 +22,11 @@ def robot_summary(trace: Trace, index: int) -> dict:
     return {
         "name": trace.robots[index]["name"],
         "start": trace.robots[index]["start"],
-        "end": {"x_cm": round(float(x), 3), "y_cm": round(float(y), 3), "heading_deg": round(float(heading), 3)},
+        "end": {
+            "x_cm": round(float(x), 3),
+            "y_cm": round(float(y), 3),
+            "heading_deg": round(float(heading), 3),
+        },
         "path_cm": round(path, 3),
         "wall_contacts": contacts,
     }

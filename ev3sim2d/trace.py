@@ -43,7 +43,9 @@ class Trace:
     world: dict  # name, title, YAML text of the world file
     seed: int
     times: array = field(default_factory=lambda: array("d"))
-    values: array = field(default_factory=lambda: array("d"))  # per tick, per robot: pose + motor columns, flat
+    values: array = field(
+        default_factory=lambda: array("d")
+    )  # per tick, per robot: pose + motor columns, flat
     sensor_times: list[float] = field(default_factory=list)
     sensor_rows: list[list] = field(default_factory=list)  # per snapshot, per robot: {port: [mode, values]}
     output: list[OutputLine] = field(default_factory=list)

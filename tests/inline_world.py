@@ -3,7 +3,9 @@
 from ev3sim2d.world.maze_file import parse_maze
 
 
-def arena(width=20, height=20, cell_cm=12, start="x_cm: 60\n  y_cm: 120\n  heading_deg: 0", inner=None, extra=""):
+def arena(
+    width=20, height=20, cell_cm=12, start="x_cm: 60\n  y_cm: 120\n  heading_deg: 0", inner=None, extra=""
+):
     """A walled arena of width × height cells; `inner` replaces the rows inside the border."""
     rows = ["#" * width]
     inner = inner or ["#" + "." * (width - 2) + "#"] * (height - 2)

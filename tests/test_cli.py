@@ -9,14 +9,31 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def cli(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "ev3sim2d", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd or ROOT, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "ev3sim2d", *map(str, args)],
+        capture_output=True,
+        text=True,
+        cwd=cwd or ROOT,
+        timeout=120,
+    )
 
 
 def test_run_writes_summary_and_png(tmp_path):
     summary, png = tmp_path / "run.json", tmp_path / "end.png"
-    result = cli("run", "examples/line_follower.py", "--maze", "line", "--time", "5",
-                 "--summary", summary, "--png", png, "--trace", tmp_path / "run.npz")
+    result = cli(
+        "run",
+        "examples/line_follower.py",
+        "--maze",
+        "line",
+        "--time",
+        "5",
+        "--summary",
+        summary,
+        "--png",
+        png,
+        "--trace",
+        tmp_path / "run.npz",
+    )
     assert result.returncode == 0, result.stderr
     data = json.loads(summary.read_text())
     assert data["status"] == "time_limit"

@@ -9,7 +9,10 @@ from ev3sim2d.scheduler import RunOver, Scheduler
 
 
 def run_tasks(scheduler, bodies):
-    tasks = [scheduler.spawn(f"t{i}", None, body, _thread.start_new_thread, main=True) for i, body in enumerate(bodies)]
+    tasks = [
+        scheduler.spawn(f"t{i}", None, body, _thread.start_new_thread, main=True)
+        for i, body in enumerate(bodies)
+    ]
     scheduler.start()
     assert scheduler.settled.wait(10), "run did not settle"
     return tasks
@@ -51,6 +54,7 @@ def test_two_tasks_interleave_by_virtual_time_deterministically():
             for _ in range(3):
                 log.append((s.now_us, name))
                 s.spend(step)
+
         return body
 
     s = Scheduler(10_000, lambda t: None)

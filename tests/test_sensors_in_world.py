@@ -1,8 +1,7 @@
 """Sensors read the world: colour under the spot, distance ahead, bumper, noise."""
 
-from tests.inline_world import arena
-
 from ev3sim2d.simulation import Simulation
+from tests.inline_world import arena
 
 # a 12 cm grid with one black column (col 5: x 60..72) on white floor
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18

@@ -18,7 +18,9 @@ class Led(Device):
         self.readers.update(
             brightness=lambda: str(self.brightness),
             max_brightness=lambda: "255",
-            trigger=lambda: " ".join(f"[{t}]" if t == self.trigger else t for t in ("none", "timer", "heartbeat")),
+            trigger=lambda: " ".join(
+                f"[{t}]" if t == self.trigger else t for t in ("none", "timer", "heartbeat")
+            ),
         )
         self.writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
         self.readers.pop("address")

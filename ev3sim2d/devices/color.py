@@ -41,11 +41,15 @@ class ColorSensor(LegoSensor):
         area = (2 * h) ** 2
         cells = []
         x0, x1, y0, y1 = x - h, x + h, y - h, y + h
-        for col in range(max(int(math.floor(x0 / size)), 0), min(int(math.floor(x1 / size)), floor.width - 1) + 1):
+        for col in range(
+            max(int(math.floor(x0 / size)), 0), min(int(math.floor(x1 / size)), floor.width - 1) + 1
+        ):
             wx = min(x1, (col + 1) * size) - max(x0, col * size)
             if wx <= 0:
                 continue
-            for row in range(max(int(math.floor(y0 / size)), 0), min(int(math.floor(y1 / size)), floor.height - 1) + 1):
+            for row in range(
+                max(int(math.floor(y0 / size)), 0), min(int(math.floor(y1 / size)), floor.height - 1) + 1
+            ):
                 wy = min(y1, (row + 1) * size) - max(y0, row * size)
                 if wy > 0:
                     cells.append((col, row, wx * wy / area))

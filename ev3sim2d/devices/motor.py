@@ -31,8 +31,13 @@ STALL_RATIO = 0.25  # ... turning less than this share of the planned travel
 
 # state bits, also used by the trace
 RUNNING, RAMPING, HOLDING, OVERLOADED, STALLED = 1, 2, 4, 8, 16
-STATE_NAMES = ((RUNNING, "running"), (RAMPING, "ramping"), (HOLDING, "holding"),
-               (OVERLOADED, "overloaded"), (STALLED, "stalled"))
+STATE_NAMES = (
+    (RUNNING, "running"),
+    (RAMPING, "ramping"),
+    (HOLDING, "holding"),
+    (OVERLOADED, "overloaded"),
+    (STALLED, "stalled"),
+)
 
 
 def state_text(bits: int) -> str:
@@ -71,7 +76,14 @@ class TachoMotor(Device):
             ramp_up_sp=lambda: str(self.ramp_up_sp),
             ramp_down_sp=lambda: str(self.ramp_down_sp),
         )
-        for pid in ("hold_pid/Kp", "hold_pid/Ki", "hold_pid/Kd", "speed_pid/Kp", "speed_pid/Ki", "speed_pid/Kd"):
+        for pid in (
+            "hold_pid/Kp",
+            "hold_pid/Ki",
+            "hold_pid/Kd",
+            "speed_pid/Kp",
+            "speed_pid/Ki",
+            "speed_pid/Kd",
+        ):
             r[pid] = lambda pid=pid: str(self.pid[pid])
             w[pid] = lambda value, pid=pid: self.pid.__setitem__(pid, parse_int(value))
         w.update(
@@ -99,8 +111,14 @@ class TachoMotor(Device):
         self.duty_cycle_sp = 0
         self.ramp_up_sp = 0
         self.ramp_down_sp = 0
-        self.pid = {"hold_pid/Kp": 1000, "hold_pid/Ki": 0, "hold_pid/Kd": 0,
-                    "speed_pid/Kp": 1000, "speed_pid/Ki": 60, "speed_pid/Kd": 0}
+        self.pid = {
+            "hold_pid/Kp": 1000,
+            "hold_pid/Ki": 0,
+            "hold_pid/Kd": 0,
+            "speed_pid/Kp": 1000,
+            "speed_pid/Ki": 60,
+            "speed_pid/Kd": 0,
+        }
         self.mode = "stopped"  # stopped, run, to_pos, timed, direct, coast
         self.state_bits = 0
         self.speed_dps = 0.0  # measured shaft speed, motor frame

@@ -49,10 +49,19 @@ def draw_final_frame(trace: Trace, width_px: int = 800) -> np.ndarray:
         x, y, heading = poses[-1]
         body = robot.get("body") or {"front_cm": 9, "back_cm": 9, "width_cm": 13}
         h = math.radians(heading)
-        corners = [(body["front_cm"], body["width_cm"] / 2), (-body["back_cm"], body["width_cm"] / 2),
-                   (-body["back_cm"], -body["width_cm"] / 2), (body["front_cm"], -body["width_cm"] / 2)]
-        outline = np.array([to_px(x + cx * math.cos(h) - cy * math.sin(h), y + cx * math.sin(h) + cy * math.cos(h))
-                            for cx, cy in corners], dtype=np.int32)
+        corners = [
+            (body["front_cm"], body["width_cm"] / 2),
+            (-body["back_cm"], body["width_cm"] / 2),
+            (-body["back_cm"], -body["width_cm"] / 2),
+            (body["front_cm"], -body["width_cm"] / 2),
+        ]
+        outline = np.array(
+            [
+                to_px(x + cx * math.cos(h) - cy * math.sin(h), y + cx * math.sin(h) + cy * math.cos(h))
+                for cx, cy in corners
+            ],
+            dtype=np.int32,
+        )
         cv2.fillPoly(image, [outline], color, cv2.LINE_AA)
         cv2.polylines(image, [outline], True, (40, 40, 40), 1, cv2.LINE_AA)
         tip = to_px(x + body["front_cm"] * math.cos(h), y + body["front_cm"] * math.sin(h))

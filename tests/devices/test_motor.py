@@ -116,7 +116,13 @@ def test_inversed_polarity_turns_the_other_way_and_counts_in_its_own_frame():
 
 @pytest.mark.parametrize(
     "attribute, value",
-    [("speed_sp", "1051"), ("command", "fly"), ("stop_action", "park"), ("time_sp", "-1"), ("duty_cycle_sp", "101")],
+    [
+        ("speed_sp", "1051"),
+        ("command", "fly"),
+        ("stop_action", "park"),
+        ("time_sp", "-1"),
+        ("duty_cycle_sp", "101"),
+    ],
 )
 def test_invalid_values_are_refused_like_the_driver_does(attribute, value):
     m = TachoMotor("ev3-ports:outB", "large")
