@@ -88,8 +88,10 @@ class _attribute:
     def __init__(self, sysfs_name, doc, kind="int", writable=True, readable=True, cached=False):
         self.sysfs_name = sysfs_name
         self.__doc__ = doc
+        self.kind = kind
         self.getter = self._GETTERS[(kind, cached)] if readable else None
         self.setter = self._SETTERS[kind] if writable else None
+        self.direct = readable and kind in ("int", "string") and not cached  # hot paths: read straight through
         self.name = self.slot = None
 
     def __set_name__(self, owner, name):
@@ -99,6 +101,12 @@ class _attribute:
     def __get__(self, device, owner=None):
         if device is None:
             return self
+        if self.direct:  # what get_attr_int / get_attr_string do, without the handle bookkeeping
+            try:
+                value = _link.read(device._class_name, device._device_name, self.sysfs_name)
+            except Exception as ex:
+                device._raise_friendly_access_error(ex, self.sysfs_name, None)
+            return int(value) if self.kind == "int" else value.strip()
         if self.getter is None:
             raise Exception(f"{self.name} is a write-only property!")
         handle, value = getattr(device, self.getter)(getattr(device, self.slot), self.sysfs_name)
@@ -108,6 +116,13 @@ class _attribute:
     def __set__(self, device, value):
         if self.setter is None:
             raise AttributeError(f"property '{self.name}' of '{type(device).__name__}' object has no setter")
+        text = str(int(value)) if self.kind == "int" else value
+        if isinstance(text, str):  # what set_attr_int / set_attr_string do, without the handle bookkeeping
+            try:
+                _link.write(device._class_name, device._device_name, self.sysfs_name, text)
+            except Exception as ex:
+                device._raise_friendly_access_error(ex, self.sysfs_name, text.encode())
+            return
         handle = getattr(device, self.setter)(getattr(device, self.slot), self.sysfs_name, value)
         setattr(device, self.slot, handle)
 

@@ -18,7 +18,10 @@ A backend provides:
 
 Reads and writes raise OSError with the errno a sysfs file would give
 (EINVAL for a value out of range, ENOENT for an attribute the driver lacks),
-and cost the virtual time a real EV3 would spend on them.
+and cost the virtual time a real EV3 would spend on them.  Values are written
+as str (bytes are decoded as latin-1 first).  While connected, `read` and
+`write` *are* the backend's methods: they are called in every loop of every
+program, so they go straight through.
 """
 
 _backend = None
@@ -33,13 +36,15 @@ class NotInSimulation(RuntimeError):
 
 
 def connect(backend) -> None:
-    global _backend
+    global _backend, read, write
     _backend = backend
+    read, write = backend.read, backend.write
 
 
 def disconnect() -> None:
-    global _backend
+    global _backend, read, write
     _backend = None
+    read, write = _read_outside, _write_outside
 
 
 def connected() -> bool:
@@ -57,14 +62,16 @@ def list_device_names(class_name, name_pattern="*", **match):
     return _require().list_device_names(class_name, name_pattern, match)
 
 
-def read(class_name, device_name, attribute):
-    return _require().read(class_name, device_name, attribute)
+def _read_outside(class_name, device_name, attribute):
+    raise NotInSimulation(OUTSIDE_MESSAGE)
 
 
-def write(class_name, device_name, attribute, value):
-    if isinstance(value, (bytes, bytearray)):
-        value = bytes(value).decode("latin-1")
-    _require().write(class_name, device_name, attribute, value)
+def _write_outside(class_name, device_name, attribute, value):
+    raise NotInSimulation(OUTSIDE_MESSAGE)
+
+
+read = _read_outside  # read(class_name, device_name, attribute) -> str
+write = _write_outside  # write(class_name, device_name, attribute, value: str | bytes) -> None
 
 
 def poll(class_name, device_name, attribute, timeout_ms):

@@ -45,10 +45,7 @@ class ShimLink:
         return task.owner
 
     def _device(self, class_name: str, device_name: str):
-        try:
-            return self._task_by_thread[get_ident()].owner.brick.classes[class_name][device_name]
-        except KeyError:
-            return self._robot().brick.device(class_name, device_name)  # the right error
+        return self._robot().brick.device(class_name, device_name)
 
     def list_device_names(self, class_name: str, name_pattern: str, match: dict) -> list[str]:
         names = self._robot().brick.list_device_names(class_name, name_pattern, match)
@@ -56,19 +53,24 @@ class ShimLink:
         return names
 
     def read(self, class_name: str, device_name: str, attribute: str) -> str:
-        device = self._device(class_name, device_name)
-        reader = device.readers.get(attribute)
-        value = reader() if reader is not None else device.read(attribute)
+        try:
+            device = self._task_by_thread[get_ident()].owner.brick.classes[class_name][device_name]
+            value = device.readers[attribute]()
+        except KeyError:
+            value = self._device(class_name, device_name).read(attribute)  # raises the right error
         self.scheduler.spend(READ_US)
         return value
 
-    def write(self, class_name: str, device_name: str, attribute: str, value: str) -> None:
-        device = self._device(class_name, device_name)
-        writer = device.writers.get(attribute)
-        if writer is not None:
-            writer(value)
+    def write(self, class_name: str, device_name: str, attribute: str, value: str | bytes) -> None:
+        if not isinstance(value, str):
+            value = bytes(value).decode("latin-1")
+        try:
+            device = self._task_by_thread[get_ident()].owner.brick.classes[class_name][device_name]
+            writer = device.writers[attribute]
+        except KeyError:
+            self._device(class_name, device_name).write(attribute, value)  # raises the right error
         else:
-            device.write(attribute, value)
+            writer(value)
         self.scheduler.spend(WRITE_US)
 
     def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:

@@ -116,8 +116,9 @@ class Robot:
         self.left.measured(planned_left, (forward - half_turn) / self.cm_per_deg, dt)
         self.right.measured(planned_right, (forward + half_turn) / self.cm_per_deg, dt)
         for motor in self.other_motors:
-            turned = motor.plan(dt)
-            motor.measured(turned, turned, dt)
+            if motor.mode != "stopped" or motor.speed_dps:
+                turned = motor.plan(dt)
+                motor.measured(turned, turned, dt)
         self.turn_rate = dh / dt
         self.x, self.y, self.heading_rad = x, y, heading
         self.tick += 1

@@ -104,11 +104,10 @@ def run_programs(
         scheduler, link, sim.trace, sim.robots, seed, sorted({p.path.resolve().parent for p in loaded}), echo
     )
     tasks = []
-    wall_start = _real_perf_counter()
-    status_override = None
     with env:
         for program, bot in zip(loaded, sim.robots, strict=False):
             tasks.append(scheduler.spawn(bot.name, bot, program.run, _real_start_new_thread, main=True))
+        wall_start = _real_perf_counter()
         scheduler.start()
         status_override = _watch(scheduler, hang_after_s)
     wall = _real_perf_counter() - wall_start

@@ -9,8 +9,6 @@ following needs.  Reflected light per shade and colour: see world/colors.py
 
 from __future__ import annotations
 
-import math
-
 from .sensor import LegoSensor, Mode
 
 DEFAULT_SPOT_CM = 1.5
@@ -38,22 +36,11 @@ class ColorSensor(LegoSensor):
         x, y, _ = self.position()
         floor, h = self.floor, self.half
         size = floor.cell_cm
-        area = (2 * h) ** 2
-        cells = []
-        x0, x1, y0, y1 = x - h, x + h, y - h, y + h
-        for col in range(
-            max(int(math.floor(x0 / size)), 0), min(int(math.floor(x1 / size)), floor.width - 1) + 1
-        ):
-            wx = min(x1, (col + 1) * size) - max(x0, col * size)
-            if wx <= 0:
-                continue
-            for row in range(
-                max(int(math.floor(y0 / size)), 0), min(int(math.floor(y1 / size)), floor.height - 1) + 1
-            ):
-                wy = min(y1, (row + 1) * size) - max(y0, row * size)
-                if wy > 0:
-                    cells.append((col, row, wx * wy / area))
-        return cells
+        return [
+            (col, row, wx * wy)
+            for col, wx in _overlaps(x - h, x + h, size, floor.width)
+            for row, wy in _overlaps(y - h, y + h, size, floor.height)
+        ]
 
     def measure(self, mode: str) -> tuple[float, ...]:
         if mode == "COL-AMBIENT":
@@ -72,3 +59,18 @@ class ColorSensor(LegoSensor):
         if mode == "REF-RAW":
             return (rgb[0], 0.8 * rgb[0])
         return (rgb[0], rgb[1], rgb[2], 0)
+
+
+def _overlaps(lo: float, hi: float, size: float, count: int) -> list[tuple[int, float]]:
+    """The cells [i·size, (i+1)·size) that the interval [lo, hi] overlaps, with the share of it in each."""
+    first, last = int(lo // size), int(hi // size)
+    if first == last:
+        return [(min(max(first, 0), count - 1), 1.0)]
+    span = hi - lo
+    if last == first + 1:  # the usual edge: the spot is smaller than a cell
+        split = last * size
+        return [(max(first, 0), (split - lo) / span), (min(last, count - 1), (hi - split) / span)]
+    return [
+        (min(max(i, 0), count - 1), (min(hi, (i + 1) * size) - max(lo, i * size)) / span)
+        for i in range(first, last + 1)
+    ]

@@ -104,6 +104,7 @@ class TachoMotor(Device):
         self.shaft_deg = 0.0  # encoder count in the motor's own frame (float, exact)
         self.offset = 0.0  # position = sign * shaft + offset
         self.polarity = "normal"
+        self.sign = 1  # -1 when the polarity is inversed
         self.stop_action = "coast"
         self.speed_sp = 0
         self.position_sp = 0
@@ -128,10 +129,6 @@ class TachoMotor(Device):
         self._lag_s = 0.0
 
     @property
-    def sign(self) -> int:
-        return -1 if self.polarity == "inversed" else 1
-
-    @property
     def position(self) -> int:
         return int(round(self.sign * self.shaft_deg + self.offset))
 
@@ -152,6 +149,7 @@ class TachoMotor(Device):
             raise invalid(value)
         position = self.position
         self.polarity = value
+        self.sign = -1 if value == "inversed" else 1
         self.offset = position - self.sign * self.shaft_deg
 
     def _set_stop_action(self, value: str) -> None:

@@ -94,15 +94,15 @@ class LegoSensor(Device):
         around = self.around
         if self._sample_tick != around.tick or self._sample_mode != self.mode:
             mode = self.MODES[self.mode]
-            raw = self.measure(self.mode)
             scale = 10**mode.decimals
+            low, high = mode.low, mode.high
             noise = self.noise
             sample = []
-            for v in raw:
+            for v in self.measure(self.mode):
                 if noise:
                     v += around.rng.normal(0.0, noise)
                 v = round(v * scale)
-                sample.append(int(min(max(v, mode.low), mode.high)))
+                sample.append(int(low if v < low else high if v > high else v))
             self._sample = tuple(sample)
             self._sample_tick = around.tick
             self._sample_mode = self.mode

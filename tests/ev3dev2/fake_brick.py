@@ -207,6 +207,8 @@ class FakeBrick:
         return value + "\n"
 
     def write(self, class_name, name, attribute, value):
+        if not isinstance(value, str):  # a backend takes bytes too (set_attr_raw), as latin-1
+            value = bytes(value).decode("latin-1")
         device = self._device(class_name, name, attribute)
         self.log.append(["write", name, attribute, value])
         if attribute == "speed_sp" and abs(int(value)) > int(self._peek(device["max_speed"])):

@@ -5,7 +5,7 @@ import errno
 import pytest
 
 import ev3dev2
-from ev3dev2 import Device, DeviceNotFound, list_device_names, list_devices
+from ev3dev2 import Device, DeviceNotFound, _link, list_device_names, list_devices
 from ev3dev2.motor import OUTPUT_D, LargeMotor, MediumMotor, Motor
 
 from .fake_brick import sensor, tacho_motor
@@ -121,6 +121,7 @@ def test_other_invalid_values_give_upstreams_generic_message(make_brick):
         raise OSError(errno.EINVAL, "Invalid argument")
 
     brick.write = refuse
+    _link.connect(brick)  # the link binds the backend's methods when it connects
     with pytest.raises(
         ValueError, match=r"^One or more arguments were out of range or invalid, value b'bogus'$"
     ):
