@@ -123,7 +123,9 @@ class Physics:
                 robot.touching = max(robot.touching + change, 0)
 
     def step(self, dt: float) -> None:
-        self.space.step(dt)
+        # Chipmunk's step itself: nothing is added or removed while the world runs, which is all
+        # pymunk's Space.step adds around it (at a dozen Python calls a tick).
+        lib.cpSpaceStep(self._cp_space, dt)
 
     def ray(self, x: float, y: float, direction: float, max_cm: float, group: int) -> float | None:
         """Distance from (x, y) along direction to the first wall or other robot, if within max_cm."""

@@ -72,12 +72,11 @@ class Robot:
         self._planned = (0.0, 0.0)
 
     # ------------------------------------------------------------ surroundings
-    def sensor_pose(self, spec) -> tuple[float, float, float]:
-        """Where a sensor is (x, y in cm) and the direction it looks (radians)."""
+    def sensor_pose(self, mount: tuple[float, float, float]) -> tuple[float, float, float]:
+        """Where a sensor mounted at (radius cm, angle rad, aim rad) is, and the direction it looks."""
+        radius, angle, aim = mount
         h = self.heading_rad
-        a = h + math.radians(spec.angle_deg)
-        r = spec.radius_cm
-        return self.x + r * math.cos(a), self.y + r * math.sin(a), h + math.radians(spec.aim_deg)
+        return self.x + radius * math.cos(h + angle), self.y + radius * math.sin(h + angle), h + aim
 
     def ray(self, x: float, y: float, direction: float, max_cm: float) -> float | None:
         return self.physics.ray(x, y, direction, max_cm, self.group)

@@ -48,7 +48,10 @@ class ColorSensor(LegoSensor):
         cells = self._cells()
         if mode == "COL-REFLECT":
             table = self.floor.reflected
-            return (sum(table[row][col] * share for col, row, share in cells),)
+            total = 0.0
+            for col, row, share in cells:
+                total += table[row][col] * share
+            return (total,)
         if mode == "COL-COLOR":
             col, row, _ = max(cells, key=lambda c: c[2])
             return (self.floor.color_id[row][col],)

@@ -34,7 +34,7 @@ class Surroundings(Protocol):
     tick: int
     rng: object
 
-    def sensor_pose(self, spec) -> tuple[float, float, float]: ...
+    def sensor_pose(self, mount: tuple[float, float, float]) -> tuple[float, float, float]: ...
     def ray(self, x: float, y: float, direction: float, max_cm: float) -> float | None: ...
     def near(self, x: float, y: float, reach_cm: float) -> bool: ...
 
@@ -55,6 +55,8 @@ class LegoSensor(Device):
         self.spec = spec
         self.around = surroundings
         self.noise = float(getattr(spec, "noise", 0.0) or 0.0)
+        # where it sits: radius (cm), direction from the robot centre and aim (radians from the heading)
+        self.mount = (spec.radius_cm, math.radians(spec.angle_deg), math.radians(getattr(spec, "aim_deg", 0.0)))
         self.mode = next(iter(self.MODES))
         self._sample_tick = -1
         self._sample_mode = ""
@@ -135,4 +137,4 @@ class LegoSensor(Device):
 
     def position(self) -> tuple[float, float, float]:
         """Where the sensor is: x, y (cm) and the direction it faces (radians)."""
-        return self.around.sensor_pose(self.spec)
+        return self.around.sensor_pose(self.mount)
