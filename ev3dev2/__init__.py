@@ -91,7 +91,9 @@ class _attribute:
         self.kind = kind
         self.getter = self._GETTERS[(kind, cached)] if readable else None
         self.setter = self._SETTERS[kind] if writable else None
-        self.direct = readable and kind in ("int", "string") and not cached  # hot paths: read straight through
+        self.direct = (
+            readable and kind in ("int", "string") and not cached
+        )  # hot paths: read straight through
         self.name = self.slot = None
 
     def __set_name__(self, owner, name):

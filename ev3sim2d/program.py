@@ -36,7 +36,13 @@ VIRTUAL_EPOCH_S = 1_735_689_600.0  # time.time() at the start of every run: 2025
 MONOTONIC_BASE_S = 1_000.0
 PRINT_US = 1_000
 MAX_RECORDED_LINES = 5_000
-PRELOADED_SHIM_MODULES = ("ev3dev2.motor", "ev3dev2.sensor.lego", "ev3dev2.sound", "ev3dev2.led", "ev3dev2.button")
+PRELOADED_SHIM_MODULES = (
+    "ev3dev2.motor",
+    "ev3dev2.sensor.lego",
+    "ev3dev2.sound",
+    "ev3dev2.led",
+    "ev3dev2.button",
+)
 
 _real_start_new_thread = _thread.start_new_thread
 _real = {

@@ -56,7 +56,11 @@ class LegoSensor(Device):
         self.around = surroundings
         self.noise = float(getattr(spec, "noise", 0.0) or 0.0)
         # where it sits: radius (cm), direction from the robot centre and aim (radians from the heading)
-        self.mount = (spec.radius_cm, math.radians(spec.angle_deg), math.radians(getattr(spec, "aim_deg", 0.0)))
+        self.mount = (
+            spec.radius_cm,
+            math.radians(spec.angle_deg),
+            math.radians(getattr(spec, "aim_deg", 0.0)),
+        )
         self.mode = next(iter(self.MODES))
         self._sample_tick = -1
         self._sample_mode = ""
