@@ -88,7 +88,7 @@ def _cmd_run(args) -> int:
         for program in args.programs:
             if not Path(program).is_file():
                 return _fail(f"{program}: no such program file")
-        echo = None if args.quiet else echo_line(sys.stdout)
+        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
         result = run_programs(args.programs, world, robot, args.time, args.seed, args.hang_after, echo)
     except WorldFileError as err:
         return _fail(str(err))

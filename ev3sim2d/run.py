@@ -12,6 +12,7 @@ from __future__ import annotations
 import ctypes
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -192,11 +193,12 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
     return RunResult(status, reason, t, wall, sim.trace, error, sim.robots, scheduler.tasks)
 
 
-def echo_line(stream) -> callable:
+def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
     """An echo for run_programs that prints each line with its virtual time (and robot, if several)."""
 
     def echo(line: OutputLine) -> None:
-        stream.write(f"[{line.t_s:8.3f} s] {line.text}\n")
+        who = f" robot{line.robot + 1}" if robots > 1 else ""
+        stream.write(f"[{line.t_s:8.3f} s{who}] {line.text}\n")
 
     return echo
 

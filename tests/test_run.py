@@ -231,3 +231,27 @@ def test_odometry_thread_runs_in_virtual_time(run):
     assert result.status == "finished", result.reason
     x_mm, y_mm = map(int, result.trace.output[-1].text.split())
     assert abs(x_mm - 300) < 10 and abs(y_mm) < 5
+
+
+def test_two_programs_drive_two_robots_that_see_each_other(tmp_path):
+    from ev3sim2d.run import run_programs
+
+    world = arena(
+        start="- {x_cm: 40, y_cm: 120, heading_deg: 0}\n  - {x_cm: 140, y_cm: 120, heading_deg: 180}"
+    )
+    watcher = tmp_path / "watcher.py"
+    watcher.write_text(
+        "from ev3dev2.sensor.lego import UltrasonicSensor\nprint(UltrasonicSensor().distance_centimeters)\n"
+    )
+    mover = tmp_path / "mover.py"
+    mover.write_text(
+        "from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C\n"
+        "MoveTank(OUTPUT_B, OUTPUT_C).on_for_rotations(30, 30, 1)\n"
+    )
+    result = run_programs([watcher, mover], world, time_limit_s=10)
+    assert result.status == "finished", result.reason
+    # robot 2 faces robot 1: its front is 9 cm ahead of its centre at x=140; robot 1's sensor is at x=48
+    assert abs(float(result.trace.output[0].text) - (140 - 9 - 48)) <= 0.2
+    assert result.trace.output[0].robot == 0
+    end2 = result.trace.poses(1)[-1]
+    assert abs((140 - end2[0]) - WHEEL_CIRCUMFERENCE_CM) < 0.2
