@@ -23,7 +23,7 @@ from .world.world import World
 
 DEGREES = 180.0 / math.pi
 TICK_US = 10_000  # the world advances in steps of 10 ms of virtual time
-SENSOR_SNAPSHOT_EVERY = 10  # ticks between snapshots of every sensor in the trace (10 Hz)
+SENSOR_SNAPSHOT_EVERY = 10  # every 10 ticks (10 Hz) each sensor is measured for the trace, read or not
 
 
 @dataclass
@@ -77,6 +77,9 @@ class Simulation:
                     f"with its body inside a wall; move the start further from the walls"
                 )
         self.ticks = 0
+        for index, robot in enumerate(self.robots):
+            for port, sensor in robot.sensors.items():
+                sensor.on_sample = self._recorder(index, port)
         self.trace = Trace(
             tick_s=self.dt,
             robots=[self._describe(r) for r in self.robots],
@@ -96,6 +99,12 @@ class Simulation:
             "wheel_diameter_mm": robot.spec.wheel_diameter_mm,
             "axle_track_mm": robot.spec.axle_track_mm,
         }
+
+    def _recorder(self, robot: int, port: str):
+        def record(mode: str, values: tuple[int, ...]) -> None:
+            self.trace.add_sample(self.ticks * self.dt, robot, port, mode, values)
+
+        return record
 
     def tick(self, now_us: int) -> None:
         """Advance the world by one tick ending at now_us, and record it."""
@@ -117,10 +126,9 @@ class Simulation:
         self.trace.add_tick(t, row)
         self.ticks += 1
         if self.ticks % SENSOR_SNAPSHOT_EVERY == 0:
-            self.trace.add_sensors(t, self.sensor_snapshot())
-
-    def sensor_snapshot(self) -> list[dict]:
-        return [{port: [s.mode, list(s.values())] for port, s in r.sensors.items()} for r in self.robots]
+            for robot in self.robots:
+                for sensor in robot.sensors.values():
+                    sensor.values()  # measured (and so recorded) unless the program did this tick
 
     def motor_states(self, robot: Robot) -> dict[str, str]:
         return {port: state_text(m.state_bits) for port, m in robot.motors.items()}

@@ -46,8 +46,9 @@ class Trace:
     values: array = field(
         default_factory=lambda: array("d")
     )  # per tick, per robot: pose + motor columns, flat
-    sensor_times: list[float] = field(default_factory=list)
-    sensor_rows: list[list] = field(default_factory=list)  # per snapshot, per robot: {port: [mode, values]}
+    # every sensor measurement, when the program read it or a periodic snapshot took it:
+    # [t_s, robot index, port, mode, [values as the driver gives them]]
+    sensor_samples: list[list] = field(default_factory=list)
     output: list[OutputLine] = field(default_factory=list)
     result: dict = field(default_factory=dict)  # status, error, ... filled in at the end
 
@@ -61,9 +62,8 @@ class Trace:
         self.times.append(t_s)
         self.values.extend(row)
 
-    def add_sensors(self, t_s: float, snapshot: list[dict]) -> None:
-        self.sensor_times.append(t_s)
-        self.sensor_rows.append(snapshot)
+    def add_sample(self, t_s: float, robot: int, port: str, mode: str, values) -> None:
+        self.sensor_samples.append([t_s, robot, port, mode, list(values)])
 
     def add_output(self, line: OutputLine) -> None:
         self.output.append(line)
@@ -96,7 +96,7 @@ class Trace:
         h = hashlib.sha256()
         h.update(np.round(np.asarray(self.times) * 1e6).astype(np.int64).tobytes())
         h.update(np.round(self.motion() * 1e4).astype(np.int64).tobytes())
-        h.update(json.dumps(self.sensor_rows, separators=(",", ":")).encode())
+        h.update(json.dumps(self.sensor_samples, separators=(",", ":")).encode())
         h.update(json.dumps([[round(o.t_s, 6), o.robot, o.stream, o.text] for o in self.output]).encode())
         h.update(json.dumps({k: self.result.get(k) for k in ("status", "error_type")}).encode())
         return h.hexdigest()[:16]
@@ -109,7 +109,7 @@ class Trace:
             "robots": self.robots,
             "world": self.world,
             "seed": self.seed,
-            "sensor_rows": self.sensor_rows,
+            "sensor_samples": self.sensor_samples,
             "output": [o.__dict__ for o in self.output],
             "result": self.result,
         }
@@ -118,7 +118,6 @@ class Trace:
                 f,
                 times=np.asarray(self.times, dtype=float),
                 motion=self.motion(),
-                sensor_times=np.asarray(self.sensor_times, dtype=float),
                 meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
             )
 
@@ -131,8 +130,7 @@ class Trace:
             trace = cls(meta["tick_s"], meta["robots"], meta["world"], meta["seed"])
             trace.times = array("d", data["times"].tolist())
             trace.values = array("d", data["motion"].ravel().tolist())
-            trace.sensor_times = data["sensor_times"].tolist()
-        trace.sensor_rows = meta["sensor_rows"]
+        trace.sensor_samples = meta["sensor_samples"]
         trace.output = [OutputLine(**o) for o in meta["output"]]
         trace.result = meta["result"]
         return trace

@@ -1,0 +1,55 @@
+"""The trace: what a run recorded, saved and loaded back unchanged."""
+
+from ev3sim2d.trace import Trace
+
+
+def test_a_saved_trace_loads_back_with_the_same_fingerprint(run, tmp_path):
+    result = run("""
+        from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C
+        from ev3dev2.sensor.lego import ColorSensor
+        eye = ColorSensor()
+        MoveTank(OUTPUT_B, OUTPUT_C).on_for_seconds(30, 30, 1)
+        print(eye.reflected_light_intensity)
+    """)
+    path = tmp_path / "run.npz"
+    result.trace.save(path)
+    loaded = Trace.load(path)
+    assert loaded.fingerprint() == result.trace.fingerprint()
+    assert (loaded.motion() == result.trace.motion()).all()
+    assert loaded.output[0].text == result.trace.output[0].text
+    assert loaded.result["status"] == "finished"
+
+
+def test_every_tick_is_recorded_with_poses_and_motor_states(run):
+    result = run("""
+        from ev3dev2.motor import LargeMotor, OUTPUT_B
+        LargeMotor(OUTPUT_B).on_for_seconds(50, 0.5)
+    """)
+    trace = result.trace
+    assert len(trace.times) == round(result.sim_time_s / trace.tick_s)
+    motion = trace.motion()
+    assert motion.shape == (len(trace.times), trace.width)
+    ports = [port for port, _ in trace.robots[0]["motors"]]
+    state = motion[:, 4 + 3 * ports.index("outB") + 2]
+    assert (state == 1).sum() > 40  # running (and nothing else) for most of the half second
+    assert state[-1] == 4  # holding at the end (brake=True)
+
+
+def test_sensor_values_the_program_read_are_in_the_trace(run):
+    result = run("""
+        from ev3dev2.sensor.lego import UltrasonicSensor
+        import time
+        us = UltrasonicSensor()
+        time.sleep(0.05)
+        print(us.value())
+    """)
+    read = int(result.trace.output[0].text)
+    samples = [s for s in result.trace.sensor_samples if s[2] == "in4"]
+    assert [read] in [s[4] for s in samples]
+    assert all(s[3] == "US-DIST-CM" for s in samples)
+
+
+def test_a_different_seed_or_program_changes_the_fingerprint(run):
+    a = run("import time\ntime.sleep(0.5)\nprint(1)")
+    b = run("import time\ntime.sleep(0.5)\nprint(2)")
+    assert a.trace.fingerprint() != b.trace.fingerprint()
