@@ -105,96 +105,94 @@ class SpeedNativeUnits(SpeedValue):
         return self.native_counts
 
 
-class SpeedRPS(SpeedValue):
+class _ScaledSpeed(SpeedValue):
+    """A speed in a unit that scales to native units through the motor's max_rps/rpm/dps/dpm.
+
+    Subclasses name the attribute that holds the number (as upstream's classes do),
+    the motor's limit in that unit, and the words of upstream's messages.
+    """
+
+    VALUE = LIMIT = NAME = LIMIT_NAME = SUFFIX = ""
+
+    def __init__(self, value, desc=None):
+        setattr(self, self.VALUE, value)
+        self.desc = desc
+
+    def __str__(self):
+        return f"{self.desc} " if self.desc else "" + str(getattr(self, self.VALUE)) + self.SUFFIX
+
+    def __mul__(self, other):
+        assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
+        return type(self)(getattr(self, self.VALUE) * other)
+
+    def to_native_units(self, motor):
+        """The native speed (counts per second) that gives this speed on `motor`."""
+        value, limit = getattr(self, self.VALUE), getattr(motor, self.LIMIT)
+        if abs(value) > limit:
+            raise SpeedInvalid(
+                f"invalid {self.NAME}: {motor} max {self.LIMIT_NAME} is {limit}, {value} was requested"
+            )
+        return value / limit * motor.max_speed
+
+
+class SpeedRPS(_ScaledSpeed):
     """Speed in rotations per second."""
 
+    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+        "rotations_per_second",
+        "max_rps",
+        "rotations-per-second",
+        "RPS",
+        " rot/sec",
+    )
+
     def __init__(self, rotations_per_second, desc=None):
-        self.rotations_per_second = rotations_per_second
-        self.desc = desc
-
-    def __str__(self):
-        return f"{self.desc} " if self.desc else "" + str(self.rotations_per_second) + " rot/sec"
-
-    def __mul__(self, other):
-        assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
-        return SpeedRPS(self.rotations_per_second * other)
-
-    def to_native_units(self, motor):
-        """The native speed that gives this many rotations per second."""
-        if abs(self.rotations_per_second) > motor.max_rps:
-            raise SpeedInvalid(
-                f"invalid rotations-per-second: {motor} max RPS is {motor.max_rps}, {self.rotations_per_second} was requested"
-            )
-        return self.rotations_per_second / motor.max_rps * motor.max_speed
+        super().__init__(rotations_per_second, desc)
 
 
-class SpeedRPM(SpeedValue):
+class SpeedRPM(_ScaledSpeed):
     """Speed in rotations per minute."""
 
+    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+        "rotations_per_minute",
+        "max_rpm",
+        "rotations-per-minute",
+        "RPM",
+        " rot/min",
+    )
+
     def __init__(self, rotations_per_minute, desc=None):
-        self.rotations_per_minute = rotations_per_minute
-        self.desc = desc
-
-    def __str__(self):
-        return f"{self.desc} " if self.desc else "" + str(self.rotations_per_minute) + " rot/min"
-
-    def __mul__(self, other):
-        assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
-        return SpeedRPM(self.rotations_per_minute * other)
-
-    def to_native_units(self, motor):
-        """The native speed that gives this many rotations per minute."""
-        if abs(self.rotations_per_minute) > motor.max_rpm:
-            raise SpeedInvalid(
-                f"invalid rotations-per-minute: {motor} max RPM is {motor.max_rpm}, {self.rotations_per_minute} was requested"
-            )
-        return self.rotations_per_minute / motor.max_rpm * motor.max_speed
+        super().__init__(rotations_per_minute, desc)
 
 
-class SpeedDPS(SpeedValue):
+class SpeedDPS(_ScaledSpeed):
     """Speed in degrees per second."""
 
+    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+        "degrees_per_second",
+        "max_dps",
+        "degrees-per-second",
+        "DPS",
+        " deg/sec",
+    )
+
     def __init__(self, degrees_per_second, desc=None):
-        self.degrees_per_second = degrees_per_second
-        self.desc = desc
-
-    def __str__(self):
-        return f"{self.desc} " if self.desc else "" + str(self.degrees_per_second) + " deg/sec"
-
-    def __mul__(self, other):
-        assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
-        return SpeedDPS(self.degrees_per_second * other)
-
-    def to_native_units(self, motor):
-        """The native speed that gives this many degrees per second."""
-        if abs(self.degrees_per_second) > motor.max_dps:
-            raise SpeedInvalid(
-                f"invalid degrees-per-second: {motor} max DPS is {motor.max_dps}, {self.degrees_per_second} was requested"
-            )
-        return self.degrees_per_second / motor.max_dps * motor.max_speed
+        super().__init__(degrees_per_second, desc)
 
 
-class SpeedDPM(SpeedValue):
+class SpeedDPM(_ScaledSpeed):
     """Speed in degrees per minute."""
 
+    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+        "degrees_per_minute",
+        "max_dpm",
+        "degrees-per-minute",
+        "DPM",
+        " deg/min",
+    )
+
     def __init__(self, degrees_per_minute, desc=None):
-        self.degrees_per_minute = degrees_per_minute
-        self.desc = desc
-
-    def __str__(self):
-        return f"{self.desc} " if self.desc else "" + str(self.degrees_per_minute) + " deg/min"
-
-    def __mul__(self, other):
-        assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
-        return SpeedDPM(self.degrees_per_minute * other)
-
-    def to_native_units(self, motor):
-        """The native speed that gives this many degrees per minute."""
-        if abs(self.degrees_per_minute) > motor.max_dpm:
-            raise SpeedInvalid(
-                f"invalid degrees-per-minute: {motor} max DPM is {motor.max_dpm}, {self.degrees_per_minute} was requested"
-            )
-        return self.degrees_per_minute / motor.max_dpm * motor.max_speed
+        super().__init__(degrees_per_minute, desc)
 
 
 def speed_to_speedvalue(speed, desc=None):
