@@ -117,11 +117,11 @@ def run_programs(
 
 def _watch(scheduler: Scheduler, hang_after_s: float) -> str | None:
     """Wait for the run to settle; stop it if it hangs or the user interrupts it."""
-    last = (scheduler.progress, scheduler.now_us)
+    last = scheduler.now_us  # a program that uses the robot or the clock moves it
     last_change = _real_monotonic()
     try:
         while not scheduler.settled.wait(0.05):
-            seen = (scheduler.progress, scheduler.now_us)
+            seen = scheduler.now_us
             now = _real_monotonic()
             if seen != last:
                 last, last_change = seen, now
@@ -182,6 +182,7 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
         status, reason = "time_limit", f"ran until the time limit of {t:.2f} s"
     else:
         status, reason = "finished", f"finished at {t:.2f} s"
+    sim.finish()
     sim.trace.result = {
         "status": status,
         "reason": reason,

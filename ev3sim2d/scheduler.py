@@ -61,7 +61,6 @@ class Scheduler:
         self.tasks: list[Task] = []
         self.over = False
         self.end_reason: str | None = None
-        self.progress = 0  # bumped whenever virtual time moves; a watchdog reads it
         self.settled = threading.Event()  # set once the run is over and every main task has ended
 
     # ----------------------------------------------------------------- clock
@@ -82,9 +81,7 @@ class Scheduler:
             self.now_us = self.next_tick_us
             on_tick(self.now_us)
             self.next_tick_us += tick_us
-            self.progress += 1
         self.now_us = target_us
-        self.progress += 1
 
     def end(self, reason: str) -> None:
         """End the run; tasks that run again get RunOver."""
@@ -143,7 +140,6 @@ class Scheduler:
         if not ready or ready[0][0] > target:
             if target < self.next_tick_us and (self.limit_us is None or target <= self.limit_us):
                 self.now_us = target  # the common case: no tick, nobody else due
-                self.progress += 1
                 return
             self._advance_to(target)
             return

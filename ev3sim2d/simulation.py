@@ -77,9 +77,6 @@ class Simulation:
                     f"with its body inside a wall; move the start further from the walls"
                 )
         self.ticks = 0
-        for index, robot in enumerate(self.robots):
-            for port, sensor in robot.sensors.items():
-                sensor.on_sample = self._recorder(index, port)
         self.trace = Trace(
             tick_s=self.dt,
             robots=[self._describe(r) for r in self.robots],
@@ -100,11 +97,17 @@ class Simulation:
             "axle_track_mm": robot.spec.axle_track_mm,
         }
 
-    def _recorder(self, robot: int, port: str):
-        def record(mode: str, values: tuple[int, ...]) -> None:
-            self.trace.add_sample(self.ticks * self.dt, robot, port, mode, values)
-
-        return record
+    def finish(self) -> Trace:
+        """The trace, with the sensor measurements collected from the sensors, in time order."""
+        samples = [
+            [tick * self.dt, index, port, mode, list(values)]
+            for index, robot in enumerate(self.robots)
+            for port, sensor in robot.sensors.items()
+            for tick, mode, values in sensor.samples
+        ]
+        samples.sort(key=lambda s: (s[0], s[1], s[2]))
+        self.trace.sensor_samples = samples
+        return self.trace
 
     def tick(self, now_us: int) -> None:
         """Advance the world by one tick ending at now_us, and record it."""

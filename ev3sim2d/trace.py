@@ -62,9 +62,6 @@ class Trace:
         self.times.append(t_s)
         self.values.extend(row)
 
-    def add_sample(self, t_s: float, robot: int, port: str, mode: str, values) -> None:
-        self.sensor_samples.append([t_s, robot, port, mode, list(values)])
-
     def add_output(self, line: OutputLine) -> None:
         self.output.append(line)
 

@@ -3,6 +3,8 @@
 import math
 import sys
 
+import pytest
+
 from tests.inline_world import arena
 
 WHEEL_CIRCUMFERENCE_CM = math.pi * 5.6
@@ -130,15 +132,11 @@ def test_an_exception_points_into_the_program_with_the_time(run):
     assert "at 1.50 s" in result.reason
 
 
-def test_a_program_that_spins_without_the_robot_or_clock_is_stopped(run):
-    result = run(
-        """
-        x = 0
-        while True:
-            x += 1
-    """,
-        hang_after_s=0.5,
-    )
+@pytest.mark.parametrize(
+    "loop", ["x = 0\nwhile True:\n    x += 1\n", "import time\nwhile True:\n    time.sleep(0)\n"]
+)
+def test_a_program_that_spins_without_the_robot_or_clock_is_stopped(run, loop):
+    result = run(loop, hang_after_s=0.5)
     assert result.status == "hung"
     assert "without using the robot or the clock" in result.reason
 

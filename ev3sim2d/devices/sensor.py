@@ -65,7 +65,7 @@ class LegoSensor(Device):
         self._sample_tick = -1
         self._sample_mode = ""
         self._sample: tuple[int, ...] = ()
-        self.on_sample = None  # called with (mode, values) for each new measurement
+        self.samples: list[tuple[int, str, tuple[int, ...]]] = []  # (tick, mode, values) of every measurement
         r, w = self.readers, self.writers
         r.update(
             mode=lambda: self.mode,
@@ -113,8 +113,7 @@ class LegoSensor(Device):
             self._sample = tuple(sample)
             self._sample_tick = around.tick
             self._sample_mode = self.mode
-            if self.on_sample is not None:
-                self.on_sample(self.mode, self._sample)
+            self.samples.append((around.tick, self.mode, self._sample))
         return self._sample
 
     def _value(self, n: int) -> str:
