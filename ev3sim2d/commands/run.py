@@ -1,0 +1,106 @@
+"""`ev3sim2d run`: run programs, one robot each, in a world; write the summary, trace and pictures."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from ..program import ProgramError
+from ..run import RunResult, echo_line, run_programs
+from ..simulation import StartBlocked
+from ..summary import run_summary, write_summary
+from ..world.maze_file import find_maze, load_maze
+from ..world.robot_spec import load_robot
+from ..world.source_error import WorldFileError
+from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
+
+NAME = "run"
+HELP = "run a program (or several, one robot each) in a world"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("programs", nargs="+", metavar="PROG", help="python-ev3dev2 program file(s)")
+    parser.add_argument(
+        "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
+    )
+    parser.add_argument("--robot", metavar="FILE", help="robot description file (default: the world's robot)")
+    parser.add_argument(
+        "--time",
+        type=float,
+        default=60.0,
+        metavar="S",
+        help="stop after S seconds of simulated time (default: 60)",
+    )
+    parser.add_argument(
+        "--seed", type=int, default=0, help="seed for sensor noise and the program's random (default: 0)"
+    )
+    parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
+    parser.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
+    parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
+    parser.add_argument("--quiet", action="store_true", help="do not echo what the program prints")
+    parser.add_argument(
+        "--hang-after",
+        type=float,
+        default=5.0,
+        metavar="S",
+        help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
+    )
+
+
+def _write_outputs(args, result: RunResult) -> None:
+    if args.trace:
+        result.trace.save(args.trace)
+    if args.summary:
+        write_summary(run_summary(result, args.programs, args.maze, args.seed, args.time), args.summary)
+    if args.png:
+        from ..render.frame import write_png
+
+        write_png(result.trace, args.png)
+
+
+def main(args) -> int:
+    if args.time is not None and args.time <= 0:
+        return fail("--time must be a positive number of seconds")
+    try:
+        world = load_maze(find_maze(args.maze))
+        robot = load_robot(args.robot) if args.robot else None
+        for program in args.programs:
+            if not Path(program).is_file():
+                return fail(f"{program}: no such program file")
+        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
+        result = run_programs(args.programs, world, robot, args.time, args.seed, args.hang_after, echo)
+    except WorldFileError as err:
+        return fail(str(err))
+    except ProgramError as err:
+        return fail(str(err), EXIT_PROGRAM_ERROR)
+    except (StartBlocked, FileNotFoundError) as err:
+        return fail(str(err))
+
+    if result.error:
+        print(result.error["traceback"].rstrip(), file=sys.stderr)
+        if result.error.get("hint"):
+            print(f"hint: {result.error['hint']}", file=sys.stderr)
+    try:
+        _write_outputs(args, result)
+    except OSError as err:
+        print(f"ev3sim2d: error: could not write the outputs: {err}", file=sys.stderr)
+        return EXIT_USAGE
+    speed = result.sim_time_s / result.wall_time_s if result.wall_time_s > 0 else float("inf")
+    print(
+        f"ev3sim2d: {result.reason} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
+        file=sys.stderr,
+    )
+    code = {
+        "finished": EXIT_OK,
+        "time_limit": EXIT_OK,
+        "error": EXIT_PROGRAM_ERROR,
+        "hung": EXIT_HUNG,
+        "interrupted": EXIT_INTERRUPTED,
+    }[result.status]
+    if any(not t.done for t in result.tasks):  # a program thread that would not stop
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    return code
