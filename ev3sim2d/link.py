@@ -17,6 +17,7 @@ from __future__ import annotations
 from threading import get_ident
 
 from .scheduler import Scheduler
+from .trace import Trace
 
 READ_US = 2_000  # reading one attribute (a sensor value, a motor's position or state)
 WRITE_US = 3_000  # writing one attribute (a speed, a command, a mode)
@@ -30,10 +31,12 @@ class OutsideTask(RuntimeError):
 class ShimLink:
     """The backend ev3dev2._link talks to during a run."""
 
-    def __init__(self, scheduler: Scheduler) -> None:
+    def __init__(self, scheduler: Scheduler, trace: Trace, robots: list) -> None:
         self.scheduler = scheduler
+        self.trace = trace
+        self.robots = robots
         self._task_by_thread = scheduler.by_thread
-        self.sounds: list[tuple[float, str, object]] = []
+        self.volume = {}  # robot index -> speaker volume, percent
 
     def _robot(self):
         task = self._task_by_thread.get(get_ident())
@@ -71,6 +74,8 @@ class ShimLink:
             self._device(class_name, device_name).write(attribute, value)  # raises the right error
         else:
             writer(value)
+        if class_name == "leds":
+            self._event("leds", {name: led.brightness for name, led in self._robot().brick.leds.items()})
         self.scheduler.spend(WRITE_US)
 
     def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:
@@ -79,13 +84,25 @@ class ShimLink:
         timeout_us = None if timeout_ms is None else int(timeout_ms * 1000)
         self.scheduler.wait(lambda: device.read(attribute) != before, timeout_us)
 
+    def _event(self, kind: str, data: dict) -> None:
+        self.trace.add_event(self.scheduler.now_s, self.robots.index(self._robot()), kind, data)
+
     def call(self, feature: str, *args):
-        """Brick features beyond sysfs; sound, buttons and the LCD are recorded or answered simply for now."""
+        """Brick features beyond sysfs: the speaker, the buttons, the LCD; recorded in the trace."""
+        if feature == "sound":
+            kind, details = args[0], dict(args[1]) if len(args) > 1 else {}
+            robot = self.robots.index(self._robot())
+            if kind == "get_volume":
+                return self.volume.get(robot, 100)
+            if kind == "set_volume":
+                self.volume[robot] = details.get("pct", 100)
+            self._event("sound", {"kind": kind, **details})
+            return None
+        if feature == "display":
+            pixels = args[0] if args else None
+            if pixels is not None:
+                self._event("lcd", {"frame": self.trace.add_lcd_frame(bytes(pixels))})
+            return None
         if feature == "buttons":
             return []
-        if feature == "sound":
-            self.sounds.append(
-                (self.scheduler.now_s, args[0] if args else "", args[1:] if len(args) > 1 else None)
-            )
-            return None
-        return None
+        raise ValueError(f"the simulated brick has no feature {feature!r}")

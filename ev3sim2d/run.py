@@ -100,7 +100,7 @@ def run_programs(
     sim = Simulation(world, [(names[i], spec, world.starts[i]) for i in range(len(loaded))], seed=seed)
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
     scheduler = Scheduler(sim.tick_us, sim.tick, limit_us)
-    link = ShimLink(scheduler)
+    link = ShimLink(scheduler, sim.trace, sim.robots)
     env = SimulatedEnvironment(
         scheduler, link, sim.trace, sim.robots, seed, sorted({p.path.resolve().parent for p in loaded}), echo
     )

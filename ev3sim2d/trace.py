@@ -50,6 +50,11 @@ class Trace:
     # [t_s, robot index, port, mode, [values as the driver gives them]]
     sensor_samples: list[list] = field(default_factory=list)
     output: list[OutputLine] = field(default_factory=list)
+    # what the brick did besides moving: [t_s, robot index, kind, data]; kinds: 'sound' (data: the
+    # sound's kind and details, see ev3dev2/sound.py), 'leds' (brightness 0..255 by LED name),
+    # 'lcd' (data: {'frame': index into lcd_frames})
+    events: list[list] = field(default_factory=list)
+    lcd_frames: list[bytes] = field(default_factory=list)  # 178 x 128 bytes of 8-bit grey, row by row
     result: dict = field(default_factory=dict)  # status, error, ... filled in at the end
 
     # ------------------------------------------------------------ recording
@@ -64,6 +69,13 @@ class Trace:
 
     def add_output(self, line: OutputLine) -> None:
         self.output.append(line)
+
+    def add_event(self, t_s: float, robot: int, kind: str, data: dict) -> None:
+        self.events.append([t_s, robot, kind, data])
+
+    def add_lcd_frame(self, pixels: bytes) -> int:
+        self.lcd_frames.append(pixels)
+        return len(self.lcd_frames) - 1
 
     # -------------------------------------------------------------- reading
     def motion(self) -> np.ndarray:
@@ -95,6 +107,9 @@ class Trace:
         h.update(np.round(self.motion() * 1e4).astype(np.int64).tobytes())
         h.update(json.dumps(self.sensor_samples, separators=(",", ":")).encode())
         h.update(json.dumps([[round(o.t_s, 6), o.robot, o.stream, o.text] for o in self.output]).encode())
+        h.update(json.dumps(self.events, separators=(",", ":"), default=str).encode())
+        for frame in self.lcd_frames:
+            h.update(frame)
         h.update(json.dumps({k: self.result.get(k) for k in ("status", "error_type")}).encode())
         return h.hexdigest()[:16]
 
@@ -108,6 +123,7 @@ class Trace:
             "seed": self.seed,
             "sensor_samples": self.sensor_samples,
             "output": [o.__dict__ for o in self.output],
+            "events": self.events,
             "result": self.result,
         }
         with open(path, "wb") as f:
@@ -115,6 +131,7 @@ class Trace:
                 f,
                 times=np.asarray(self.times, dtype=float),
                 motion=self.motion(),
+                lcd=np.frombuffer(b"".join(self.lcd_frames), dtype=np.uint8).reshape(-1, 128, 178),
                 meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
             )
 
@@ -127,7 +144,9 @@ class Trace:
             trace = cls(meta["tick_s"], meta["robots"], meta["world"], meta["seed"])
             trace.times = array("d", data["times"].tolist())
             trace.values = array("d", data["motion"].ravel().tolist())
+            trace.lcd_frames = [frame.tobytes() for frame in data["lcd"]]
         trace.sensor_samples = meta["sensor_samples"]
         trace.output = [OutputLine(**o) for o in meta["output"]]
+        trace.events = meta["events"]
         trace.result = meta["result"]
         return trace

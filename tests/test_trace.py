@@ -53,3 +53,24 @@ def test_a_different_seed_or_program_changes_the_fingerprint(run):
     a = run("import time\ntime.sleep(0.5)\nprint(1)")
     b = run("import time\ntime.sleep(0.5)\nprint(2)")
     assert a.trace.fingerprint() != b.trace.fingerprint()
+
+
+def test_sounds_and_leds_are_recorded_as_events(run, tmp_path):
+    result = run("""
+        from ev3dev2.sound import Sound
+        from ev3dev2.led import Leds
+        Sound().beep()
+        Leds().set_color("LEFT", "RED")
+        Sound().speak("hello")
+    """)
+    assert result.status == "finished", result.reason
+    kinds = [(e[2], e[3].get("kind")) for e in result.trace.events]
+    assert ("sound", "beep") in kinds and ("sound", "speak") in kinds
+    leds = [e for e in result.trace.events if e[2] == "leds"]
+    assert leds[-1][3]["led0:red:brick-status"] == 255 and leds[-1][3]["led0:green:brick-status"] == 0
+    beep_t = next(e[0] for e in result.trace.events if e[3].get("kind") == "beep")
+    led_t = leds[0][0]
+    assert led_t >= beep_t + 0.2  # the program waited for the 200 ms beep
+    path = tmp_path / "t.npz"
+    result.trace.save(path)
+    assert Trace.load(path).events == result.trace.events
