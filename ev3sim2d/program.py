@@ -9,8 +9,9 @@ scheduler runs:
   time; other threads keep the real clock;
 - `print` and writes to stderr are recorded with the virtual time (a printed
   line costs 1 ms, as on the brick's console) and echoed;
-- `_thread.start_new_thread` starts a scheduled task (MoveDifferential's
-  odometry uses it); `input()` reads end-of-file; `random` is seeded with the
+- threads (`threading`, and `_thread.start_new_thread`, which MoveDifferential's
+  odometry uses) are scheduler tasks, and their locks and events wait in virtual
+  time (see threads.py); `input()` reads end-of-file; `random` is seeded with the
   run's seed; `os._exit` ends only the program.
 """
 
@@ -30,6 +31,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 from .scheduler import Scheduler
+from .threads import VirtualThreads
 from .trace import OutputLine, Trace
 
 VIRTUAL_EPOCH_S = 1_735_689_600.0  # time.time() at the start of every run: 2025-01-01 00:00 UTC
@@ -240,6 +242,8 @@ class SimulatedEnvironment:
             setattr(time, name, self._clock(_real[name], fn))
         _thread.start_new_thread = self._start_new_thread
         _thread.start_new = self._start_new_thread
+        self._threads = VirtualThreads(s, _real_start_new_thread)
+        self._threads.install()
 
         self._saved_streams = (sys.stdout, sys.stderr, sys.stdin)
         self._out = ProgramOutput("stdout", sys.stdout, self)
@@ -252,6 +256,10 @@ class SimulatedEnvironment:
         self._saved_path = list(sys.path)
         sys.path[:0] = [d for d in self.program_dirs if d not in sys.path]
         return self
+
+    def main_body(self, program: Program) -> Callable[[], None]:
+        """What a program's main task runs: the program, as its main thread."""
+        return self._threads.as_main_thread(program.run)
 
     def _os_exit(self, code: int = 0) -> None:
         if self.scheduler.task_for_thread() is None:
@@ -266,6 +274,7 @@ class SimulatedEnvironment:
             setattr(time, name, fn)
         _thread.start_new_thread = _real_start_new_thread
         _thread.start_new = _real_start_new_thread
+        self._threads.uninstall()
         os._exit = self._saved_exit
         random.setstate(self._saved_random)
         sys.path[:] = self._saved_path

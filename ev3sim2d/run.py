@@ -107,7 +107,7 @@ def run_programs(
     tasks = []
     with env:
         for program, bot in zip(loaded, sim.robots, strict=False):
-            tasks.append(scheduler.spawn(bot.name, bot, program.run, _real_start_new_thread, main=True))
+            tasks.append(scheduler.spawn(bot.name, bot, env.main_body(program), _real_start_new_thread, main=True))
         wall_start = _real_perf_counter()
         scheduler.start()
         status_override = _watch(scheduler, hang_after_s)
@@ -178,6 +178,9 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
         status = "error"
         where = f"{error['file']}, line {error['line']}, " if error["line"] else ""
         reason = f"{error['type']}: {error['message']} ({where}at {t:.2f} s)"
+    elif scheduler.end_reason == "deadlock":
+        status = "hung"
+        reason = f"stopped: every thread of the program is waiting for another (a deadlock) at {t:.2f} s"
     elif scheduler.end_reason == "time_limit":
         status, reason = "time_limit", f"ran until the time limit of {t:.2f} s"
     else:

@@ -9,6 +9,11 @@ it is then queued by wake-up time, and the earliest task (ties: first queued)
 runs next.  Before the clock moves past a tick, the tick runs.  So the order
 of everything depends only on virtual time, never on the host.
 
+A task may also *block* on a channel (a list of waiting tasks: a lock's, an
+event's): it leaves the queue until another task wakes the channel, or until
+its timeout, if it has one.  If every live task is blocked with no timeout,
+no one can ever wake them: the run ends as a deadlock.
+
 With a single task nothing is queued: spending time just steps the world
 inline, which keeps the common case fast.
 """
@@ -17,6 +22,7 @@ from __future__ import annotations
 
 import heapq
 import threading
+from _thread import allocate_lock
 from collections.abc import Callable
 
 
@@ -27,17 +33,21 @@ class RunOver(BaseException):
 class Task:
     """A thread of a program, scheduled in virtual time."""
 
-    __slots__ = ("name", "owner", "main", "thread_id", "_turn", "done", "error")
+    __slots__ = ("name", "owner", "main", "thread_id", "_turn", "done", "error", "epoch", "woken", "joiners", "released")
 
     def __init__(self, name: str, owner: object, main: bool) -> None:
         self.name = name
         self.main = main  # the run ends when every main task has ended
         self.owner = owner  # what the task acts for (the robot), opaque here
         self.thread_id: int | None = None
-        self._turn = threading.Lock()
+        self._turn = allocate_lock()  # a real lock, whatever a run does to threading
         self._turn.acquire()
         self.done = False
         self.error: BaseException | None = None
+        self.epoch = 0  # queue entries from an older epoch are stale (a timeout after a wake-up)
+        self.woken = False
+        self.joiners: list[Task] = []  # tasks blocked until this one ends
+        self.released = False  # let go for good at the end of the run
 
     def __repr__(self) -> str:
         return f"Task({self.name!r})"
@@ -54,7 +64,7 @@ class Scheduler:
         self.next_tick_us = tick_us
         self.limit_us = limit_us
         self._on_tick = on_tick
-        self._ready: list[tuple[int, int, Task]] = []
+        self._ready: list[tuple[int, int, Task, int]] = []  # (wake time, order, task, its epoch)
         self._seq = 0
         self.current: Task | None = None
         self.by_thread: dict[int, Task] = {}  # thread ident -> the task it runs
@@ -124,7 +134,7 @@ class Scheduler:
         return task
 
     def _queue(self, task: Task, wake_us: int) -> None:
-        heapq.heappush(self._ready, (wake_us, self._seq, task))
+        heapq.heappush(self._ready, (wake_us, self._seq, task, task.epoch))
         self._seq += 1
 
     def start(self) -> None:
@@ -157,13 +167,40 @@ class Scheduler:
             self.spend(max(step_to - self.now_us, 0) or self.tick_us)
         return True
 
+    def block(self, channel: list[Task], timeout_us: int | None) -> bool:
+        """The current task waits on channel until wake(channel) or timeout_us; True if woken."""
+        if self.over:
+            raise RunOver()
+        me = self.current
+        me.woken = False
+        channel.append(me)
+        if timeout_us is not None:
+            self._queue(me, self.now_us + max(timeout_us, 0))
+        try:
+            self._hand_on(me)
+        finally:
+            if not me.woken and me in channel:
+                channel.remove(me)
+        return me.woken
+
+    def wake(self, channel: list[Task], n: int | None = None) -> None:
+        """Make the first n (all, if None) tasks blocked on channel ready to run now."""
+        count = len(channel) if n is None else min(n, len(channel))
+        for task in channel[:count]:
+            task.woken = True
+            task.epoch += 1  # its timeout entry, if any, is stale now
+            self._queue(task, self.now_us)
+        del channel[:count]
+
     def _hand_on(self, me: Task | None) -> None:
         """Give the turn to the earliest queued task; me (if any) waits for its next turn."""
         while True:
             if not self._ready:
+                if me is not None or not self._mains_done():
+                    self._deadlock(me)
                 return
-            wake_us, _, nxt = heapq.heappop(self._ready)
-            if nxt.done:
+            wake_us, _, nxt, epoch = heapq.heappop(self._ready)
+            if nxt.done or epoch != nxt.epoch:
                 continue
             try:
                 self._advance_to(max(wake_us, self.now_us))
@@ -183,12 +220,20 @@ class Scheduler:
             if self.over:
                 raise RunOver()
 
+    def _deadlock(self, me: Task | None) -> None:
+        """Nobody is queued: every live task waits for another. End the run."""
+        self.end("deadlock")
+        self._release_all()
+        if me is not None:
+            raise RunOver()
+
     def _mains_done(self) -> bool:
         return all(t.done for t in self.tasks if t.main)
 
     def _finish(self, task: Task) -> None:
         task.done = True
         self.by_thread.pop(task.thread_id, None)
+        self.wake(task.joiners)
         if not self.over and self._mains_done():
             self.end("finished")
         if self.over:
@@ -198,9 +243,10 @@ class Scheduler:
 
     def _release_all(self) -> None:
         """After the end, let every waiting task run once so it can unwind with RunOver."""
-        while self._ready:
-            _, _, task = heapq.heappop(self._ready)
-            if not task.done:
+        self._ready.clear()
+        for task in self.tasks:
+            if not task.done and task is not self.current and not task.released:
+                task.released = True
                 task._turn.release()
         if self._mains_done():
             self.settled.set()

@@ -99,3 +99,44 @@ def test_wait_returns_when_the_condition_holds_or_times_out():
 def test_tick_rate_must_be_positive():
     with pytest.raises(ValueError):
         Scheduler(0, lambda t: None)
+
+
+def test_a_blocked_task_runs_again_when_woken_at_the_waker_s_time():
+    channel = []
+    log = []
+
+    def waiter():
+        log.append(("wait", s.now_us))
+        woken = s.block(channel, None)
+        log.append(("woken", s.now_us, woken))
+
+    def waker():
+        s.spend(25_000)
+        s.wake(channel)
+        log.append(("woke", s.now_us))
+        s.spend(1_000)
+
+    s = Scheduler(10_000, lambda t: None)
+    run_tasks(s, [waiter, waker])
+    assert log == [("wait", 0), ("woke", 25_000), ("woken", 25_000, True)]
+
+
+def test_a_block_with_a_timeout_gives_up_at_the_timeout():
+    channel = []
+    results = []
+
+    def body():
+        results.append(s.block(channel, 30_000))
+        results.append(s.now_us)
+        results.append(channel)
+
+    s = Scheduler(10_000, lambda t: None)
+    run_tasks(s, [body])
+    assert results == [False, 30_000, []]
+
+
+def test_tasks_that_all_wait_for_each_other_end_the_run_as_a_deadlock():
+    a, b = [], []
+    s = Scheduler(10_000, lambda t: None)
+    run_tasks(s, [lambda: s.block(a, None), lambda: s.block(b, None)])
+    assert s.end_reason == "deadlock"
