@@ -200,6 +200,9 @@ class ButtonEVIO(ButtonBase):
             if timeout_ms is not None and stopwatch.value_ms >= timeout_ms:
                 return False
 
+            if timeout_ms is None:
+                _link.call("buttons", "wait")  # the simulator stops a wait that no scripted press can end
+
             time.sleep(_POLL_INTERVAL)
 
 

@@ -28,11 +28,16 @@ class OutsideTask(RuntimeError):
     """A device was used from a thread the simulator does not schedule."""
 
 
+class NoButtonPress(RuntimeError):
+    """The program waits for a button that no scripted press will ever push."""
+
+
 class ShimLink:
     """The backend ev3dev2._link talks to during a run."""
 
-    def __init__(self, scheduler: Scheduler, trace: Trace, robots: list) -> None:
+    def __init__(self, scheduler: Scheduler, trace: Trace, robots: list, presses: list | None = None) -> None:
         self.scheduler = scheduler
+        self.presses = list(presses or ())  # ButtonPress: scripted presses of the brick's buttons
         self.trace = trace
         self.robots = robots
         self._task_by_thread = scheduler.by_thread
@@ -104,5 +109,17 @@ class ShimLink:
                 self._event("lcd", {"frame": self.trace.add_lcd_frame(bytes(pixels))})
             return None
         if feature == "buttons":
-            return []
+            now = self.scheduler.now_s
+            pressed = [p.button for p in self.presses if p.down_at(now)]
+            if (
+                args
+                and args[0] == "wait"
+                and not pressed
+                and all(p.at_s + p.hold_s <= now for p in self.presses)
+            ):
+                raise NoButtonPress(
+                    "the program waits for a button press, but no press is scripted from now on: "
+                    "run with --press enter@2.0 (BUTTON@SECONDS), or add `buttons: [enter@2.0]` to the world file"
+                )
+            return [p.button for p in self.presses if p.down_at(now)]
         raise ValueError(f"the simulated brick has no feature {feature!r}")

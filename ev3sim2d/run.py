@@ -87,8 +87,12 @@ def run_programs(
     seed: int = 0,
     hang_after_s: float = 5.0,
     echo=None,
+    presses: list | None = None,
 ) -> RunResult:
-    """Run each program on its own robot in the world; see the module docstring."""
+    """Run each program on its own robot in the world; see the module docstring.
+
+    presses: scripted button presses (ButtonPress), added to the world file's.
+    """
     loaded = [Program(p) for p in programs]  # ProgramError: the caller reports it
     if len(loaded) > len(world.starts):
         raise ProgramError(
@@ -100,14 +104,18 @@ def run_programs(
     sim = Simulation(world, [(names[i], spec, world.starts[i]) for i in range(len(loaded))], seed=seed)
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
     scheduler = Scheduler(sim.tick_us, sim.tick, limit_us)
-    link = ShimLink(scheduler, sim.trace, sim.robots)
+    presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
+    sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
+    link = ShimLink(scheduler, sim.trace, sim.robots, presses)
     env = SimulatedEnvironment(
         scheduler, link, sim.trace, sim.robots, seed, sorted({p.path.resolve().parent for p in loaded}), echo
     )
     tasks = []
     with env:
         for program, bot in zip(loaded, sim.robots, strict=False):
-            tasks.append(scheduler.spawn(bot.name, bot, env.main_body(program), _real_start_new_thread, main=True))
+            tasks.append(
+                scheduler.spawn(bot.name, bot, env.main_body(program), _real_start_new_thread, main=True)
+            )
         wall_start = _real_perf_counter()
         scheduler.start()
         status_override = _watch(scheduler, hang_after_s)

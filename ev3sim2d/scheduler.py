@@ -33,7 +33,19 @@ class RunOver(BaseException):
 class Task:
     """A thread of a program, scheduled in virtual time."""
 
-    __slots__ = ("name", "owner", "main", "thread_id", "_turn", "done", "error", "epoch", "woken", "joiners", "released")
+    __slots__ = (
+        "name",
+        "owner",
+        "main",
+        "thread_id",
+        "_turn",
+        "done",
+        "error",
+        "epoch",
+        "woken",
+        "joiners",
+        "released",
+    )
 
     def __init__(self, name: str, owner: object, main: bool) -> None:
         self.name = name

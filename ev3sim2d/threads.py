@@ -125,7 +125,10 @@ class VirtualThreads:
         with threading._active_limbo_lock:
             threading._limbo[thread] = thread
         self.tasks[thread] = self.scheduler.spawn(
-            f"{current.name}-{thread.name}", current.owner, thread._bootstrap, self.start_thread,
+            f"{current.name}-{thread.name}",
+            current.owner,
+            thread._bootstrap,
+            self.start_thread,
             main=not thread.daemon,
         )
         thread._started.wait()  # the new task runs up to run() before this one goes on

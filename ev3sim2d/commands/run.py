@@ -11,6 +11,7 @@ from ..program import ProgramError
 from ..run import RunResult, echo_line, run_programs
 from ..simulation import StartBlocked
 from ..summary import run_summary, write_summary
+from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import load_robot
 from ..world.source_error import WorldFileError
@@ -41,12 +42,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
     parser.add_argument("--quiet", action="store_true", help="do not echo what the program prints")
     parser.add_argument(
+        "--press",
+        action="append",
+        default=[],
+        type=_press,
+        metavar="BUTTON@S",
+        help="press a brick button at S seconds (BUTTON@S+HOLD to hold it HOLD s; repeatable), e.g. enter@2.0",
+    )
+    parser.add_argument(
         "--hang-after",
         type=float,
         default=5.0,
         metavar="S",
         help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
     )
+
+
+def _press(text: str) -> ButtonPress:
+    try:
+        return parse_press(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
 
 
 def _write_outputs(args, result: RunResult) -> None:
@@ -70,7 +86,9 @@ def main(args) -> int:
             if not Path(program).is_file():
                 return fail(f"{program}: no such program file")
         echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
-        result = run_programs(args.programs, world, robot, args.time, args.seed, args.hang_after, echo)
+        result = run_programs(
+            args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
+        )
     except WorldFileError as err:
         return fail(str(err))
     except ProgramError as err:

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from pathlib import Path
 
+from .button_press import parse_press
 from .cell import Cell
 from .grid import Grid
 from .grid_text import TextRow, first_non_wall_border_cell, read_text_grid, text_rows
@@ -29,7 +30,18 @@ from .source_error import WorldFileError
 from .world import DEFAULT_AMBIENT, World
 from .yaml_source import Fields, Node, load_yaml_text, read_text_file
 
-MAZE_KEYS = ("title", "description", "cell_cm", "legend", "grid", "start", "regions", "robot", "ambient")
+MAZE_KEYS = (
+    "title",
+    "description",
+    "cell_cm",
+    "legend",
+    "grid",
+    "start",
+    "regions",
+    "robot",
+    "ambient",
+    "buttons",
+)
 DEFAULT_CELL_CM = 10.0
 MIN_CELLS = 3
 
@@ -75,6 +87,14 @@ def parse_maze(text: str, path: str = "<string>") -> World:
     ambient = fields.number("ambient", default=DEFAULT_AMBIENT, unit="0..100", example="ambient: 10")
     if not 0 <= ambient <= 100:
         raise fields.get("ambient").error(f"'ambient' is a light level from 0 to 100, got {ambient:g}")
+    buttons = []
+    for node in (
+        fields.get("buttons").as_list("buttons", "buttons: [enter@2.0]") if "buttons" in fields else []
+    ):
+        try:
+            buttons.append(parse_press(node.as_text("buttons", "buttons: [enter@2.0]")))
+        except ValueError as err:
+            raise node.error(str(err)) from None
     return World(
         name=name,
         title=title,
@@ -86,6 +106,7 @@ def parse_maze(text: str, path: str = "<string>") -> World:
         source=None if path.startswith("<") else path,
         text=text,
         ambient=ambient,
+        buttons=buttons,
     )
 
 

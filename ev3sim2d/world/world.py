@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
+from .button_press import ButtonPress
 from .grid import Grid
 from .pose import Pose
 from .region import Region
@@ -27,6 +28,7 @@ class World:
     source: str | None = None
     text: str | None = None
     ambient: float = DEFAULT_AMBIENT
+    buttons: list[ButtonPress] = field(default_factory=list)  # scripted presses of the brick's buttons
 
     @property
     def start(self) -> Pose:
