@@ -1,0 +1,162 @@
+"""Every program in examples/ runs as shipped and does in the world what its docstring says."""
+
+import math
+from pathlib import Path
+
+import pytest
+
+from ev3sim2d.run import run_programs
+from ev3sim2d.world.button_press import parse_press
+from ev3sim2d.world.maze_file import find_maze, load_maze
+from ev3sim2d.world.robot_spec import load_robot
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def run_example(name, maze="empty", **options):
+    options.setdefault("time_limit_s", 60)
+    world = load_maze(find_maze(maze))
+    result = run_programs([EXAMPLES / f"{name}.py"], world, hang_after_s=10, **options)
+    assert result.status == "finished", result.reason
+    return result, world
+
+
+def printed(result):
+    return [o.text for o in result.trace.output]
+
+
+def end_pose(result):
+    return result.trace.poses(0)[-1]
+
+
+def test_every_example_is_tested():
+    tested = {name[len("test_") :] for name in globals() if name.startswith("test_")}
+    for path in EXAMPLES.glob("*.py"):
+        assert path.stem in tested or path.stem == "line_follower", f"examples/{path.name} has no test"
+
+
+def test_line_follower():
+    world = load_maze(find_maze("line"))
+    result = run_programs([EXAMPLES / "line_follower.py"], world, time_limit_s=30)
+    assert result.status == "time_limit"
+    assert result.trace.robots and sum(1 for _ in result.trace.times) == 3000
+    assert world.regions["start"].contains(*result.trace.poses(0)[0][:2])
+
+
+def test_drive_square():
+    result, world = run_example("drive_square")
+    x, y, heading = end_pose(result)
+    assert math.hypot(x - world.start.x_cm, y - world.start.y_cm) < 3
+    assert abs(((heading - world.start.heading_deg) + 180) % 360 - 180) < 4
+    assert printed(result) == [f"side {i} done" for i in range(1, 5)]
+
+
+def test_motor_low_level():
+    result, _ = run_example("motor_low_level")
+    lines = printed(result)
+    assert lines[0] == "driver lego-ev3-m-motor max speed 1560 counts per rotation 360"
+    assert lines[1] == "after run_to_rel_pos: 180 ['holding']"
+    assert lines[3] == "after reset: 0 0 coast"
+
+
+def test_color_sensor():
+    result, world = run_example("color_sensor", "colors")
+    assert printed(result)[-1].startswith("Red")
+    x, y, heading = end_pose(result)
+    h = math.radians(heading)
+    eye = (x + 7 * math.cos(h), y + 7 * math.sin(h))
+    assert world.regions["red"].contains(*eye)
+
+
+def test_ultrasonic_sensor():
+    result, world = run_example("ultrasonic_sensor")
+    distance = float(printed(result)[-1].split()[2])
+    assert 19 <= distance <= 20.5
+    x = end_pose(result)[0]
+    wall = (world.grid.width - 1) * world.grid.cell_cm
+    assert abs(wall - (x + 8) - distance) < 0.5
+
+
+def test_touch_sensor():
+    result, world = run_example("touch_sensor")
+    assert printed(result)[0] == "bump!"
+    wall = (world.grid.width - 1) * world.grid.cell_cm
+    x, _, heading = end_pose(result)
+    assert x < wall - 9 - 8  # backed off
+    assert 150 < abs(heading - world.start.heading_deg) < 190  # turned round
+
+
+def test_gyro_sensor():
+    result, world = run_example("gyro_sensor")
+    angle = int(printed(result)[0].split()[1])
+    assert 90 <= angle <= 93
+    assert abs(end_pose(result)[2] - (world.start.heading_deg - angle)) < 1.5
+
+
+def test_infrared_sensor():
+    robot = load_robot(EXAMPLES / "robots" / "ir-base.yaml")
+    result, world = run_example("infrared_sensor", robot=robot)
+    proximity = int(printed(result)[0].split()[1])
+    assert 26 <= proximity < 30
+    wall = (world.grid.width - 1) * world.grid.cell_cm
+    assert abs(wall - (end_pose(result)[0] + 8) - 0.7 * proximity) < 2
+
+
+def test_sound():
+    result, _ = run_example("sound")
+    sounds = [e[3] for e in result.trace.events if e[2] == "sound" and e[3]["kind"] != "set_volume"]
+    assert [s["kind"] for s in sounds] == ["beep", "beep", "beep", "speak"]  # beep, tones, note, speech
+    assert sounds[3]["text"] == "Hello from the simulator"
+    assert result.sim_time_s > 0.2 + 3 * 0.45 + 0.5  # it waited for each sound to end
+
+
+def test_leds():
+    result, _ = run_example("leds")
+    states = [e[3] for e in result.trace.events if e[2] == "leds"]
+    red_left = [s["led0:red:brick-status"] for s in states]
+    green_left = [s["led0:green:brick-status"] for s in states]
+    assert 255 in red_left and 255 in green_left
+    assert states[-1] == dict.fromkeys(states[-1], 0)  # all off at the end
+    assert result.trace.poses(0)[-1][0] > result.trace.poses(0)[0][0] + 5  # it drove
+
+
+def test_buttons():
+    presses = [parse_press("enter@1.0"), parse_press("down@4.0")]
+    result, _ = run_example("buttons", presses=presses)
+    times = {o.text: o.t_s for o in result.trace.output}
+    assert 1.2 <= times["go"] < 1.3
+    assert 4.0 <= times["stopped by Down"] < 4.1
+    moved = result.trace.poses(0)[-1][0] - result.trace.poses(0)[0][0]
+    assert moved > 20
+
+
+def test_display():
+    result, _ = run_example("display")
+    frames = [e for e in result.trace.events if e[2] == "lcd"]
+    assert len(frames) == 3
+    pixels = result.trace.lcd_frames[frames[-1][3]["frame"]]
+    assert len(pixels) == 178 * 128
+    assert pixels.count(0) > 500 and pixels.count(255) > 10000  # black drawing on a white screen
+
+
+def test_odometry():
+    result, world = run_example("odometry")
+    x, y, _ = end_pose(result)
+    assert math.hypot(x - world.start.x_cm, y - world.start.y_cm) < 2
+    assert printed(result)[-1].startswith("at ")
+
+
+def test_threads():
+    result, _ = run_example("threads")
+    assert printed(result)[0].startswith("bumped into the wall after")
+    left_green = [e[3]["led0:green:brick-status"] for e in result.trace.events if e[2] == "leds"]
+    assert left_green.count(255) >= 3  # it blinked while driving
+    final = [e[3] for e in result.trace.events if e[2] == "leds"][-1]
+    assert final["led0:red:brick-status"] == 255
+
+
+@pytest.mark.parametrize("name", ["drive_square", "odometry", "threads"])
+def test_examples_are_deterministic(name):
+    a, _ = run_example(name)
+    b, _ = run_example(name)
+    assert a.trace.fingerprint() == b.trace.fingerprint()
