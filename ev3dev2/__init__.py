@@ -9,9 +9,13 @@ of reads and writes, exceptions and their messages) follows the real library.
 """
 
 import errno
+import fnmatch  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+import io  # noqa: F401
 import os
 import re
+import stat  # noqa: F401
 import sys
+from os.path import abspath  # noqa: F401
 
 from ev3dev2 import _link
 from ev3dev2.version import __version__  # noqa: F401

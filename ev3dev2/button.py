@@ -6,12 +6,21 @@ which returns a list of names out of up, down, left, right, enter, backspace.
 Waiting polls every 10 ms (of virtual time inside a run).
 """
 
+import array  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+import sys  # noqa: F401
 import time
 from logging import getLogger
 
-from ev3dev2 import _link
+from ev3dev2 import _link, get_current_platform, is_micropython, library_load_warning_message  # noqa: F401
 from ev3dev2._platform.ev3 import BUTTONS_FILENAME, EVDEV_DEVICE_NAME
 from ev3dev2.stopwatch import StopWatch
+
+try:
+    import fcntl  # noqa: F401
+except ImportError:
+    pass
+
+platform = get_current_platform()
 
 log = getLogger(__name__)
 

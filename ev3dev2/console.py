@@ -6,6 +6,7 @@ Here the text is kept in ``lines`` (one string per row) rather than printed,
 so the escape codes do not clutter the program's output.
 """
 
+import os  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
 import re
 
 _XRES = 178

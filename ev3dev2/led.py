@@ -1,12 +1,18 @@
 """The brick's status LEDs (python-ev3dev2 2.1.0), through the sysfs class 'leds'."""
 
 import _thread
+import os  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+import stat  # noqa: F401
+import sys  # noqa: F401
 import time
 from collections import OrderedDict
+from time import sleep  # noqa: F401  (only for star imports; the shim calls time.sleep, which a run replaces)
 
-from ev3dev2 import Device, _attribute
+from ev3dev2 import Device, _attribute, get_current_platform
 from ev3dev2._platform.ev3 import LED_COLORS, LED_DEFAULT_COLOR, LED_GROUPS, LEDS
 from ev3dev2.stopwatch import StopWatch
+
+platform = get_current_platform()
 
 
 class Led(Device):

@@ -9,13 +9,26 @@ the real library, so the simulated brick sees what a real one would.
 
 import _thread
 import math
+import select  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+import sys  # noqa: F401
 import time
 from collections import OrderedDict
 from logging import getLogger
+from os.path import abspath  # noqa: F401
 
-from ev3dev2 import Device, DeviceNotDefined, ThreadNotRunning, _attribute, _link, list_device_names
+from ev3dev2 import (
+    Device,
+    DeviceNotDefined,
+    ThreadNotRunning,
+    _attribute,
+    _link,
+    get_current_platform,
+    list_device_names,
+)
 from ev3dev2._platform.ev3 import OUTPUT_A, OUTPUT_B, OUTPUT_C, OUTPUT_D  # noqa: F401
 from ev3dev2.stopwatch import StopWatch
+
+platform = get_current_platform()
 
 log = getLogger(__name__)
 

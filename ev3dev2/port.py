@@ -1,5 +1,7 @@
 """LEGO ports (python-ev3dev2 2.1.0): the brick's input and output ports, and their modes."""
 
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+
 from ev3dev2 import Device, _attribute
 
 

@@ -1,5 +1,7 @@
 """The brick's power supply (python-ev3dev2 2.1.0): battery voltage and current."""
 
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+
 from ev3dev2 import Device, _attribute
 
 

@@ -17,10 +17,13 @@ to complete, as the real programs take that long.
 import os
 import re
 import shlex
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
 import time
 import wave
+from subprocess import PIPE, Popen  # noqa: F401
+from time import sleep  # noqa: F401  (only for star imports; the shim calls time.sleep, which a run replaces)
 
-from ev3dev2 import _link
+from ev3dev2 import _link, is_micropython  # noqa: F401
 
 # Defaults of the `beep` program.
 _BEEP_FREQUENCY = 440

@@ -1,6 +1,9 @@
 """A StopWatch for timing the gaps between events (python-ev3dev2 2.1.0)."""
 
+import datetime as dt  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
 import time
+
+from ev3dev2 import is_micropython  # noqa: F401
 
 
 def get_ticks_ms():

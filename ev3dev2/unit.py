@@ -1,5 +1,7 @@
 """Distances in several units, all convertible to millimeters (python-ev3dev2 2.1.0)."""
 
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+
 CENTIMETER_MM = 10
 DECIMETER_MM = 100
 METER_MM = 1000

@@ -12,7 +12,7 @@ from ev3dev2.sensor.lego import UltrasonicSensor
 lcd = Display()
 sonar = UltrasonicSensor()
 
-for i in range(3):
+for _ in range(3):
     lcd.clear()
     lcd.draw.rectangle((0, 0, 177, 127), outline="black")
     lcd.draw.text((10, 10), "Hello, EV3!")

@@ -1,9 +1,13 @@
 """The generic sensor classes (python-ev3dev2 2.1.0); the LEGO sensors are in ev3dev2.sensor.lego."""
 
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+from os.path import abspath  # noqa: F401
 from struct import unpack
 
-from ev3dev2 import Device, _attribute, list_device_names
+from ev3dev2 import Device, _attribute, get_current_platform, list_device_names
 from ev3dev2._platform.ev3 import INPUT_1, INPUT_2, INPUT_3, INPUT_4  # noqa: F401
+
+platform = get_current_platform()
 
 
 class Sensor(Device):

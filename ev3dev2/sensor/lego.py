@@ -1,6 +1,7 @@
 """The LEGO sensors (python-ev3dev2 2.1.0): touch, colour, ultrasonic, gyro, infrared, NXT sound and light."""
 
 import logging
+import sys  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
 import time
 
 from ev3dev2.button import ButtonBase

@@ -167,7 +167,13 @@ _COMPARE = {
 }
 
 
+class _Reference(str):
+    """A constant defined as another module's or class's constant, e.g. ``Sensor.SYSTEM_CLASS_NAME``."""
+
+
 def _value_text(value):
+    if isinstance(value, _Reference):
+        return "@ref:" + value  # resolved once every module has been read
     return None if value is UNKNOWN else repr(value)
 
 
@@ -221,7 +227,8 @@ class _ModuleReader:
         self.names = {}
         self.star_imports = []
         self.classes = {}
-        self.scope = _Scope(classes={})
+        self.scope = self.scope_module = _Scope(classes={})
+        self.class_path = None
 
     # statements that may be conditional
     def walk(self, statements, define):
@@ -299,11 +306,31 @@ class _ModuleReader:
 
     def _set_constant(self, name, value):
         self.names[name] = {"kind": "constant", "value": _value_text(value)}
-        self.scope.values[name] = value
+        self.scope.values[name] = UNKNOWN if isinstance(value, _Reference) else value
+
+    def reference(self, node, scope):
+        """The dotted name a Name or Attribute expression refers to, through imports; or None."""
+        if isinstance(node, ast.Attribute):
+            base = self.reference(node.value, scope)
+            return base + "." + node.attr if base else None
+        if not isinstance(node, ast.Name):
+            return None
+        if scope.values is not self.scope_module.values and node.id in scope.values:
+            return self.class_path + "." + node.id
+        entry = self.names.get(node.id)
+        if entry and entry["kind"] == "import":
+            return entry["target"]
+        if entry or node.id in self.classes:
+            return self.module_name + "." + node.id
+        return None
 
     def _assign(self, target, value_node, scope, set_constant):
         if isinstance(target, ast.Name):
-            set_constant(target.id, evaluate(value_node, scope))
+            value = evaluate(value_node, scope)
+            if value is UNKNOWN:
+                reference = self.reference(value_node, scope)
+                value = _Reference(reference) if reference else UNKNOWN
+            set_constant(target.id, value)
         elif isinstance(target, (ast.Tuple, ast.List)):
             values = value_node.elts if isinstance(value_node, (ast.Tuple, ast.List)) else None
             for index, element in enumerate(target.elts):
@@ -375,14 +402,15 @@ class _ModuleReader:
                         self._assign(target, member.value, scope, set_constant)
 
         reader_scope, self.scope = self.scope, scope
+        outer_path, self.class_path = self.class_path, self.module_name + "." + node.name
         try:
             self.walk(node.body, define)
         finally:
-            self.scope = reader_scope
+            self.scope, self.class_path = reader_scope, outer_path
         self.scope.classes[node.name] = values
         description["attributes"] = sorted(_self_attributes(node))
         for kind in ("methods", "properties", "constants"):
-            description[kind] = {name: value for name, value in description[kind].items()}
+            description[kind] = {name: value for name, value in description[kind].items() if is_public(name)}
         return description
 
     def qualify(self, name):
@@ -439,7 +467,8 @@ def describe_module(path, module_name, package_name):
         tree = ast.parse(file.read(), filename=path)
     reader = _ModuleReader(module_name, package_name, os.path.basename(path) == "__init__.py")
     reader.walk(tree.body, reader.module_statement)
-    return {"names": reader.names, "star_imports": reader.star_imports, "classes": reader.classes}
+    names = {name: entry for name, entry in reader.names.items() if is_public(name)}
+    return {"names": names, "star_imports": reader.star_imports, "classes": reader.classes}
 
 
 def describe_package(source, package="ev3dev2"):
@@ -473,6 +502,39 @@ def _resolve_imports(modules):
                 entry["target"] = resolve(entry["target"])
         for description in module["classes"].values():
             description["bases"] = [resolve(base) for base in description["bases"]]
+
+    def constant(reference, depth=0):
+        """The value (text) of the constant a reference names, or None."""
+        reference = resolve(reference)
+        owner, _, name = reference.rpartition(".")
+        if depth > 20:
+            return None
+        if owner in modules:
+            entry = modules[owner]["names"].get(name)
+            value = entry.get("value") if entry and entry["kind"] == "constant" else None
+        else:
+            module, _, class_name = owner.rpartition(".")
+            cls = modules.get(module, {}).get("classes", {}).get(class_name)
+            if cls is None:
+                return None
+            value = cls["constants"].get(name)
+            if value is None and name not in cls["constants"]:
+                for base in cls["bases"]:
+                    value = constant(base + "." + name, depth + 1)
+                    if value is not None:
+                        break
+        if value is not None and value.startswith("@ref:"):
+            return constant(value[5:], depth + 1)
+        return value
+
+    for module in modules.values():
+        for entry in module["names"].values():
+            if entry["kind"] == "constant" and (entry["value"] or "").startswith("@ref:"):
+                entry["value"] = constant(entry["value"][5:])
+        for description in module["classes"].values():
+            for name, value in description["constants"].items():
+                if (value or "").startswith("@ref:"):
+                    description["constants"][name] = constant(value[5:])
 
 
 # -- comparing -------------------------------------------------------------------------
@@ -566,6 +628,10 @@ class Api:
                     self.public_bases(qualified)
                 )
                 for member, value in self.own_members(cls).items():
+                    if value == "attribute":  # self.mode = ... sets an inherited property
+                        value = self.lookup(qualified, member)
+                        if value != "attribute":
+                            continue
                     items[f"{module_name}:{class_name}.{member}"] = value
         return items
 
