@@ -23,6 +23,7 @@ import importlib
 import importlib.abc
 import importlib.machinery
 import io
+import logging
 import os
 import random
 import sys
@@ -255,6 +256,7 @@ class SimulatedEnvironment:
         random.seed(self.seed)
         self._saved_path = list(sys.path)
         sys.path[:0] = [d for d in self.program_dirs if d not in sys.path]
+        self._saved_logging = _logging_state()
         return self
 
     def main_body(self, program: Program) -> Callable[[], None]:
@@ -267,6 +269,7 @@ class SimulatedEnvironment:
         raise SystemExit(code)
 
     def __exit__(self, *exc) -> None:
+        _restore_logging(self._saved_logging)
         self._out.finish()
         self._err.finish()
         sys.stdout, sys.stderr, sys.stdin = self._saved_streams
@@ -284,3 +287,30 @@ class SimulatedEnvironment:
         for k in [k for k in sys.modules if k == "ev3dev2" or k.startswith("ev3dev2.")]:
             del sys.modules[k]
         sys.modules.update(self._saved_modules)
+
+
+def _logging_state() -> dict:
+    """Handlers and levels of every logger: a program's logging.basicConfig must not outlive its run."""
+    loggers = [
+        logging.root,
+        *(lg for lg in logging.root.manager.loggerDict.values() if isinstance(lg, logging.Logger)),
+    ]
+    return {
+        "disable": logging.root.manager.disable,
+        "loggers": {id(lg): (lg, list(lg.handlers), lg.level, lg.propagate, lg.disabled) for lg in loggers},
+    }
+
+
+def _restore_logging(state: dict) -> None:
+    logging.disable(state["disable"])
+    known = state["loggers"]
+    for lg in [logging.root, *logging.root.manager.loggerDict.values()]:
+        if not isinstance(lg, logging.Logger):
+            continue
+        if id(lg) in known:
+            _, handlers, level, propagate, disabled = known[id(lg)]
+            lg.handlers[:] = handlers
+            lg.setLevel(level)
+            lg.propagate, lg.disabled = propagate, disabled
+        else:
+            lg.handlers.clear()

@@ -10,10 +10,11 @@ result holds the trace up to that moment.
 from __future__ import annotations
 
 import ctypes
+import gc
 import time
 import traceback
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from .link import ShimLink
@@ -43,8 +44,7 @@ class RunResult:
     wall_time_s: float
     trace: Trace | None
     error: dict | None = None  # type, message, file, line, t_s, traceback
-    robots: list = field(default_factory=list)  # the Robot objects
-    tasks: list = field(default_factory=list)  # the scheduler's tasks
+    stray_threads: int = 0  # program threads that would not stop (the process must exit hard)
 
     @property
     def ok(self) -> bool:
@@ -120,7 +120,10 @@ def run_programs(
         scheduler.start()
         status_override = _watch(scheduler, hang_after_s)
     wall = _real_perf_counter() - wall_start
-    return _result(scheduler, sim, loaded, tasks, wall, status_override, env.dropped_lines)
+    result = _result(scheduler, sim, loaded, tasks, wall, status_override, env.dropped_lines)
+    del sim, env, link, scheduler, tasks
+    gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
+    return result
 
 
 def _watch(scheduler: Scheduler, hang_after_s: float) -> str | None:
@@ -202,7 +205,8 @@ def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_line
         "error": error,
         "dropped_output_lines": dropped_lines,
     }
-    return RunResult(status, reason, t, wall, sim.trace, error, sim.robots, scheduler.tasks)
+    stray = sum(1 for task in tasks if not task.done)
+    return RunResult(status, reason, t, wall, sim.trace, error, stray)
 
 
 def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:

@@ -253,3 +253,19 @@ def test_two_programs_drive_two_robots_that_see_each_other(tmp_path):
     assert result.trace.output[0].robot == 0
     end2 = result.trace.poses(1)[-1]
     assert abs((140 - end2[0]) - WHEEL_CIRCUMFERENCE_CM) < 0.2
+
+
+def test_logging_and_stderr_are_captured_and_logging_is_restored_after_the_run(run):
+    import logging
+
+    handlers_before = list(logging.root.handlers)
+    result = run("""
+        import logging, sys
+        logging.basicConfig(level=logging.INFO, force=True)
+        logging.getLogger("mine").info("from the program %d", 7)
+        print("oops", file=sys.stderr)
+    """)
+    lines = [(o.stream, o.text) for o in result.trace.output]
+    assert ("stderr", "INFO:mine:from the program 7") in lines
+    assert ("stderr", "oops") in lines
+    assert logging.root.handlers == handlers_before

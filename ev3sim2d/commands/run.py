@@ -117,7 +117,7 @@ def main(args) -> int:
         "hung": EXIT_HUNG,
         "interrupted": EXIT_INTERRUPTED,
     }[result.status]
-    if any(not t.done for t in result.tasks):  # a program thread that would not stop
+    if result.stray_threads:  # a program thread that would not stop
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(code)
