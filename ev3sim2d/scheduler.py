@@ -126,7 +126,7 @@ class Scheduler:
         task = Task(name, owner, main)
         self.tasks.append(task)
 
-        def main() -> None:
+        def run_task() -> None:
             task.thread_id = threading.get_ident()
             self.by_thread[task.thread_id] = task
             task._turn.acquire()  # wait for the first turn
@@ -142,7 +142,7 @@ class Scheduler:
                 self._finish(task)
 
         self._queue(task, self.now_us)
-        start_thread(main, ())
+        start_thread(run_task, ())
         return task
 
     def _queue(self, task: Task, wake_us: int) -> None:
