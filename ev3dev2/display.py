@@ -6,9 +6,14 @@ The EV3's 178x128 LCD (python-ev3dev2 2.1.0), drawn with Pillow when it is insta
 row (0 black, 255 white), or None when Pillow is missing and nothing is drawn.
 """
 
+import ctypes
 import logging
+import mmap  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
+import os  # noqa: F401
+import sys  # noqa: F401
+from struct import pack  # noqa: F401
 
-from ev3dev2 import _link, fonts, get_current_platform
+from ev3dev2 import _link, fonts, get_current_platform, library_load_warning_message  # noqa: F401
 
 log = logging.getLogger(__name__)
 
@@ -17,8 +22,114 @@ try:
 except ImportError:  # Drawing is cosmetic in the simulator: without Pillow it does nothing.
     Image = ImageDraw = None
 
+try:
+    import fcntl  # noqa: F401
+except ImportError:
+    pass
+
 _XRES = 178
 _YRES = 128
+_BITS_PER_PIXEL = 32  # ev3dev's EV3 framebuffer: one 32-bit word per pixel
+
+
+class FbMem:
+    """
+    The framebuffer memory object: on a brick, the LCD's device file, its fixed and
+    variable screen info (from fb.h) and the mapped memory.
+
+    The simulated LCD has no framebuffer: the screen info says what an EV3's says
+    (178 x 128 pixels, 32 bits each), ``fid`` and ``mmap`` are None, and
+    ``Display.update()`` sends the picture to the simulator instead.
+    """
+
+    __slots__ = ("fid", "fix_info", "var_info", "mmap")
+
+    FBIOGET_VSCREENINFO = 0x4600
+    FBIOGET_FSCREENINFO = 0x4602
+
+    FB_VISUAL_MONO01 = 0
+    FB_VISUAL_MONO10 = 1
+
+    class FixScreenInfo(ctypes.Structure):
+        """The fb_fix_screeninfo from fb.h."""
+
+        _fields_ = [
+            ("id_name", ctypes.c_char * 16),
+            ("smem_start", ctypes.c_ulong),
+            ("smem_len", ctypes.c_uint32),
+            ("type", ctypes.c_uint32),
+            ("type_aux", ctypes.c_uint32),
+            ("visual", ctypes.c_uint32),
+            ("xpanstep", ctypes.c_uint16),
+            ("ypanstep", ctypes.c_uint16),
+            ("ywrapstep", ctypes.c_uint16),
+            ("line_length", ctypes.c_uint32),
+            ("mmio_start", ctypes.c_ulong),
+            ("mmio_len", ctypes.c_uint32),
+            ("accel", ctypes.c_uint32),
+            ("reserved", ctypes.c_uint16 * 3),
+        ]
+
+    class VarScreenInfo(ctypes.Structure):
+        """The fb_var_screeninfo struct from fb.h."""
+
+        class FbBitField(ctypes.Structure):
+            """The fb_bitfield struct from fb.h."""
+
+            _fields_ = [
+                ("offset", ctypes.c_uint32),
+                ("length", ctypes.c_uint32),
+                ("msb_right", ctypes.c_uint32),
+            ]
+
+            def __str__(self):
+                return "%s (offset %s, length %s, msg_right %s)" % (  # noqa: UP031  (upstream's text)
+                    self.__class__.__name__,
+                    self.offset,
+                    self.length,
+                    self.msb_right,
+                )
+
+        _fields_ = [
+            ("xres", ctypes.c_uint32),
+            ("yres", ctypes.c_uint32),
+            ("xres_virtual", ctypes.c_uint32),
+            ("yres_virtual", ctypes.c_uint32),
+            ("xoffset", ctypes.c_uint32),
+            ("yoffset", ctypes.c_uint32),
+            ("bits_per_pixel", ctypes.c_uint32),
+            ("grayscale", ctypes.c_uint32),
+            ("red", FbBitField),
+            ("green", FbBitField),
+            ("blue", FbBitField),
+            ("transp", FbBitField),
+        ]
+
+        def __str__(self):
+            return "%sx%s at (%s,%s), bpp %s, grayscale %s, red %s, green %s, blue %s, transp %s" % (  # noqa: UP031
+                self.xres,
+                self.yres,
+                self.xoffset,
+                self.yoffset,
+                self.bits_per_pixel,
+                self.grayscale,
+                self.red,
+                self.green,
+                self.blue,
+                self.transp,
+            )
+
+    def __init__(self, fbdev=None):
+        """The EV3 LCD's screen info; ``fbdev`` (a device file on a brick) is ignored."""
+        if not _link.connected():
+            raise _link.NotInSimulation(_link.OUTSIDE_MESSAGE)
+        line_length = _XRES * _BITS_PER_PIXEL // 8
+        self.fid = None
+        self.fix_info = FbMem.FixScreenInfo(smem_len=line_length * _YRES, line_length=line_length)
+        self.var_info = FbMem.VarScreenInfo(
+            xres=_XRES, yres=_YRES, xres_virtual=_XRES, yres_virtual=_YRES, bits_per_pixel=_BITS_PER_PIXEL
+        )
+        self.mmap = None
 
 
 class _NoCanvas:
@@ -28,7 +139,7 @@ class _NoCanvas:
         return lambda *args, **kwargs: None
 
 
-class Display:
+class Display(FbMem):
     """
     The LCD, with drawing functions from the Python Imaging Library (PIL):
     draw on ``draw`` or ``image``, then call ``update()`` to show it.
@@ -40,8 +151,7 @@ class Display:
     GRID_ROW_PIXELS = 10
 
     def __init__(self, desc="Display"):
-        if not _link.connected():
-            raise _link.NotInSimulation(_link.OUTSIDE_MESSAGE)
+        FbMem.__init__(self)
         self.platform = get_current_platform()
 
         if Image is not None:
@@ -58,12 +168,12 @@ class Display:
     @property
     def xres(self):
         """Horizontal screen resolution"""
-        return _XRES
+        return self.var_info.xres
 
     @property
     def yres(self):
         """Vertical screen resolution"""
-        return _YRES
+        return self.var_info.yres
 
     @property
     def shape(self):

@@ -125,25 +125,21 @@ class _ScaledSpeed(SpeedValue):
     the motor's limit in that unit, and the words of upstream's messages.
     """
 
-    VALUE = LIMIT = NAME = LIMIT_NAME = SUFFIX = ""
-
-    def __init__(self, value, desc=None):
-        setattr(self, self.VALUE, value)
-        self.desc = desc
+    _VALUE = _LIMIT = _NAME = _LIMIT_NAME = _SUFFIX = ""
 
     def __str__(self):
-        return f"{self.desc} " if self.desc else "" + str(getattr(self, self.VALUE)) + self.SUFFIX
+        return f"{self.desc} " if self.desc else "" + str(getattr(self, self._VALUE)) + self._SUFFIX
 
     def __mul__(self, other):
         assert isinstance(other, (float, int)), f"{self} can only be multiplied by an int or float"
-        return type(self)(getattr(self, self.VALUE) * other)
+        return type(self)(getattr(self, self._VALUE) * other)
 
     def to_native_units(self, motor):
         """The native speed (counts per second) that gives this speed on `motor`."""
-        value, limit = getattr(self, self.VALUE), getattr(motor, self.LIMIT)
+        value, limit = getattr(self, self._VALUE), getattr(motor, self._LIMIT)
         if abs(value) > limit:
             raise SpeedInvalid(
-                f"invalid {self.NAME}: {motor} max {self.LIMIT_NAME} is {limit}, {value} was requested"
+                f"invalid {self._NAME}: {motor} max {self._LIMIT_NAME} is {limit}, {value} was requested"
             )
         return value / limit * motor.max_speed
 
@@ -151,7 +147,7 @@ class _ScaledSpeed(SpeedValue):
 class SpeedRPS(_ScaledSpeed):
     """Speed in rotations per second."""
 
-    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+    _VALUE, _LIMIT, _NAME, _LIMIT_NAME, _SUFFIX = (
         "rotations_per_second",
         "max_rps",
         "rotations-per-second",
@@ -160,13 +156,14 @@ class SpeedRPS(_ScaledSpeed):
     )
 
     def __init__(self, rotations_per_second, desc=None):
-        super().__init__(rotations_per_second, desc)
+        self.rotations_per_second = rotations_per_second
+        self.desc = desc
 
 
 class SpeedRPM(_ScaledSpeed):
     """Speed in rotations per minute."""
 
-    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+    _VALUE, _LIMIT, _NAME, _LIMIT_NAME, _SUFFIX = (
         "rotations_per_minute",
         "max_rpm",
         "rotations-per-minute",
@@ -175,13 +172,14 @@ class SpeedRPM(_ScaledSpeed):
     )
 
     def __init__(self, rotations_per_minute, desc=None):
-        super().__init__(rotations_per_minute, desc)
+        self.rotations_per_minute = rotations_per_minute
+        self.desc = desc
 
 
 class SpeedDPS(_ScaledSpeed):
     """Speed in degrees per second."""
 
-    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+    _VALUE, _LIMIT, _NAME, _LIMIT_NAME, _SUFFIX = (
         "degrees_per_second",
         "max_dps",
         "degrees-per-second",
@@ -190,13 +188,14 @@ class SpeedDPS(_ScaledSpeed):
     )
 
     def __init__(self, degrees_per_second, desc=None):
-        super().__init__(degrees_per_second, desc)
+        self.degrees_per_second = degrees_per_second
+        self.desc = desc
 
 
 class SpeedDPM(_ScaledSpeed):
     """Speed in degrees per minute."""
 
-    VALUE, LIMIT, NAME, LIMIT_NAME, SUFFIX = (
+    _VALUE, _LIMIT, _NAME, _LIMIT_NAME, _SUFFIX = (
         "degrees_per_minute",
         "max_dpm",
         "degrees-per-minute",
@@ -205,7 +204,8 @@ class SpeedDPM(_ScaledSpeed):
     )
 
     def __init__(self, degrees_per_minute, desc=None):
-        super().__init__(degrees_per_minute, desc)
+        self.degrees_per_minute = degrees_per_minute
+        self.desc = desc
 
 
 def speed_to_speedvalue(speed, desc=None):
@@ -1324,7 +1324,7 @@ class MoveTank(MotorSet):
             except SpeedInvalid as e:
                 log.exception(e)
                 self.stop()
-                raise LineFollowErrorTooFast("The robot is moving too fast to follow the line") from e
+                raise LineFollowErrorTooFast("The robot is moving too fast to follow the line")  # noqa: B904  (as upstream)
 
         self.stop()
 
@@ -1373,7 +1373,7 @@ class MoveTank(MotorSet):
             except SpeedInvalid as e:
                 log.exception(e)
                 self.stop()
-                raise FollowGyroAngleErrorTooFast("The robot is moving too fast to follow the angle") from e
+                raise FollowGyroAngleErrorTooFast("The robot is moving too fast to follow the angle")  # noqa: B904
 
         self.stop()
 

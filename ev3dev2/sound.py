@@ -250,7 +250,7 @@ class Sound:
         try:
             freq = self._NOTE_FREQUENCIES.get(note.upper(), self._NOTE_FREQUENCIES[note])
         except KeyError:
-            raise ValueError(f"invalid note ({note})") from None
+            raise ValueError(f"invalid note ({note})")  # noqa: B904  (as upstream)
 
         if duration <= 0:
             raise ValueError(f"invalid duration ({duration})")
@@ -366,7 +366,7 @@ class Sound:
             try:
                 duration_ms = meas_duration_ms * self._NOTE_VALUES[base] * factor
             except KeyError:
-                raise ValueError(f"invalid note ({base})") from None
+                raise ValueError(f"invalid note ({base})")  # noqa: B904  (as upstream)
 
             if note == "R":
                 time.sleep(duration_ms / 1000 + delay)

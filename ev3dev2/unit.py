@@ -168,10 +168,3 @@ class DistanceStuds(DistanceValue):
     @property
     def mm(self):
         return self.studs * STUD_MM
-
-
-def distance_in_mm(distance):
-    """A DistanceValue's length in mm; a plain number is taken to be mm already."""
-    if isinstance(distance, DistanceValue):
-        return distance.mm
-    return distance

@@ -226,8 +226,6 @@ class SimulatedEnvironment:
         sys.meta_path.insert(0, self._finder)
         self._shim_link = importlib.import_module("ev3dev2._link")
         self._shim_link.connect(self.link)
-        for module in PRELOADED_SHIM_MODULES:  # loading is start-up, not the program's time
-            importlib.import_module(module)
 
         now = lambda: s.now_us  # noqa: E731
         virtual = {
@@ -245,6 +243,10 @@ class SimulatedEnvironment:
         _thread.start_new = self._start_new_thread
         self._threads = VirtualThreads(s, _real_start_new_thread)
         self._threads.install()
+        # loading is start-up, not the program's time; after the patches, so that the
+        # shim's own `from time import sleep` gets the virtual one
+        for module in PRELOADED_SHIM_MODULES:
+            importlib.import_module(module)
 
         self._saved_streams = (sys.stdout, sys.stderr, sys.stdin)
         self._out = ProgramOutput("stdout", sys.stdout, self)

@@ -50,13 +50,6 @@ class VirtualThreads:
         self._saved = real
         self._saved_methods = (threading.Thread.start, threading.Thread.join, threading.Thread.is_alive)
         self._saved_queue_time = getattr(queue, "time", None)
-        self._saved_excepthook = threading.excepthook
-
-        def excepthook(args):
-            if not issubclass(args.exc_type, RunOver):  # a thread unwinding at the end of the run is no error
-                self._saved_excepthook(args)
-
-        threading.excepthook = excepthook
 
         def factory(name: str, virtual: type) -> Callable:
             original = real[name]
@@ -97,7 +90,6 @@ class VirtualThreads:
         for name, original in self._saved.items():
             setattr(threading, name, original)
         threading.Thread.start, threading.Thread.join, threading.Thread.is_alive = self._saved_methods
-        threading.excepthook = self._saved_excepthook
         if self._saved_queue_time is not None:
             queue.time = self._saved_queue_time
 
@@ -122,6 +114,15 @@ class VirtualThreads:
         if thread._started.is_set() or thread in self.tasks:
             raise RuntimeError("threads can only be started once")
         current = self.scheduler.task_for_thread()
+        run = thread.run
+
+        def run_until_over() -> None:
+            try:
+                run()
+            except RunOver:  # the run ended while the thread ran: no error of the thread's
+                pass
+
+        thread.run = run_until_over
         with threading._active_limbo_lock:
             threading._limbo[thread] = thread
         self.tasks[thread] = self.scheduler.spawn(

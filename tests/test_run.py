@@ -269,3 +269,13 @@ def test_logging_and_stderr_are_captured_and_logging_is_restored_after_the_run(r
     assert ("stderr", "INFO:mine:from the program 7") in lines
     assert ("stderr", "oops") in lines
     assert logging.root.handlers == handlers_before
+
+
+def test_sleep_from_ev3dev2_auto_is_virtual(run):
+    result = run("""
+        from ev3dev2.auto import *
+        sleep(2)
+        print("slept")
+    """)
+    assert result.sim_time_s >= 2.0
+    assert result.wall_time_s < 1.0

@@ -10,6 +10,11 @@ Pillow's default font for a font it cannot find.
 import os.path
 from glob import glob
 
+try:
+    from PIL import ImageFont
+except ImportError:  # Pillow is optional in the simulator: without it there are no fonts to load
+    ImageFont = None
+
 
 def available():
     """The names of the available fonts."""
@@ -27,6 +32,4 @@ def load(name):
             f'Failed to load font "{name}". '
             + "Check ev3dev.fonts.available() for the list of available fonts"
         )
-    from PIL import ImageFont
-
     return ImageFont.load(pil_file)

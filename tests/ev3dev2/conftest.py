@@ -37,3 +37,13 @@ def forget_the_shim_afterwards():
     _link.disconnect()
     for name in [name for name in sys.modules if name == "ev3dev2" or name.startswith("ev3dev2.")]:
         del sys.modules[name]
+
+
+API_SHARE = pytest.StashKey[str]()
+
+
+def pytest_terminal_summary(terminalreporter, config):
+    """The share of python-ev3dev2's API the shim matches (test_api_conformance.py), under the results."""
+    share = config.stash.get(API_SHARE, None)
+    if share:
+        terminalreporter.write_line(f"ev3dev2 shim against python-ev3dev2 2.1.0: {share}")

@@ -9,8 +9,9 @@ test can assert exactly what the shim did.  It keeps a virtual clock that
 An attribute may hold a list of values: each read takes the first one, and the
 last one stays (a motor that runs, then stops: ``state=['running', '']``).
 
-The same class also drives the real python-ev3dev2 in ``upstream_runner.py``,
-which is why it uses only the standard library and JSON-friendly specs.
+The same class also drives the real python-ev3dev2 in
+``conformance/record_upstream_writes.py``, which is why it uses only the
+standard library and JSON-friendly specs.
 """
 
 import errno

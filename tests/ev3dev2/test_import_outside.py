@@ -1,11 +1,15 @@
 """Outside a simulated run the shim imports cleanly, and using a device says how to run the program."""
 
+import importlib
+import inspect
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
+import ev3dev2
 from ev3dev2 import _link
 from ev3dev2.button import Button
 from ev3dev2.display import Display
@@ -41,27 +45,11 @@ from ev3dev2.wheel import EV3Tire
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-MODULES = [
-    "ev3dev2",
-    "ev3dev2._platform.ev3",
-    "ev3dev2.auto",
-    "ev3dev2.button",
-    "ev3dev2.console",
-    "ev3dev2.control",
-    "ev3dev2.display",
-    "ev3dev2.fonts",
-    "ev3dev2.led",
-    "ev3dev2.motor",
-    "ev3dev2.port",
-    "ev3dev2.power",
-    "ev3dev2.sensor",
-    "ev3dev2.sensor.lego",
-    "ev3dev2.sound",
-    "ev3dev2.stopwatch",
-    "ev3dev2.unit",
-    "ev3dev2.version",
-    "ev3dev2.wheel",
-]
+# Every module of the shim, found on disk (the private link module too).
+MODULES = sorted(
+    ".".join(path.relative_to(REPO).with_suffix("").parts).removesuffix(".__init__")
+    for path in Path(REPO, "ev3dev2").rglob("*.py")
+)
 
 
 def test_every_module_imports_in_a_fresh_interpreter_without_a_simulator():
@@ -112,3 +100,53 @@ def test_using_a_device_outside_a_run_raises_not_in_simulation(make):
     assert not _link.connected()
     with pytest.raises(_link.NotInSimulation, match="must run inside the simulator"):
         make()
+
+
+# What a class needs besides defaults to be built (ports; a wheel and a track for MoveDifferential).
+ARGUMENTS = {
+    "Device": ("tacho-motor",),
+    "MotorSet": ({OUTPUT_A: LargeMotor, OUTPUT_B: LargeMotor},),
+    "MoveDifferential": (OUTPUT_A, OUTPUT_B, EV3Tire, 120),
+}
+
+
+def device_classes():
+    """Every public class of the shim that stands for hardware: devices, motor sets, LEDs, buttons, the LCD."""
+    from ev3dev2.button import ButtonEVIO
+    from ev3dev2.display import FbMem
+    from ev3dev2.motor import MotorSet
+
+    found = {}
+    for name in MODULES:
+        module = importlib.import_module(name)
+        for cls_name, cls in vars(module).items():
+            if (
+                inspect.isclass(cls)
+                and not cls_name.startswith("_")
+                and cls.__module__ == name
+                and issubclass(cls, (ev3dev2.Device, MotorSet, Leds, ButtonEVIO, FbMem))
+            ):
+                found[f"{name}.{cls_name}"] = cls
+    return found
+
+
+DEVICE_CLASSES = device_classes()
+
+
+def test_every_device_class_is_found():
+    some = {
+        "ev3dev2.motor.MoveTank",
+        "ev3dev2.sensor.lego.GyroSensor",
+        "ev3dev2.control.rc_tank.RemoteControlledTank",
+    }
+    assert some <= set(DEVICE_CLASSES)
+    assert len(DEVICE_CLASSES) >= 30, sorted(DEVICE_CLASSES)
+
+
+@pytest.mark.parametrize("name", sorted(DEVICE_CLASSES))
+def test_constructing_any_device_outside_a_run_raises_not_in_simulation(name):
+    cls = DEVICE_CLASSES[name]
+    arguments = ARGUMENTS.get(cls.__name__, (OUTPUT_A, OUTPUT_B) if issubclass(cls, MoveTank) else ())
+    assert not _link.connected()
+    with pytest.raises(_link.NotInSimulation, match="must run inside the simulator: ev3sim2d run"):
+        cls(*arguments)

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from ev3dev2.stopwatch import StopWatch, StopWatchAlreadyStartedException
-from ev3dev2.unit import DistanceCentimeters, DistanceFeet, DistanceMillimeters, DistanceStuds, distance_in_mm
+from ev3dev2.unit import DistanceCentimeters, DistanceFeet, DistanceMillimeters, DistanceStuds
 from ev3dev2.wheel import EV3EducationSetTire, EV3Rim, EV3Tire
 
 
@@ -37,8 +37,6 @@ def test_distance_units():
     assert str(DistanceMillimeters(3)) == "3mm"
     assert (2 * DistanceCentimeters(5)).mm == 100
     assert sorted([DistanceFeet(1), DistanceCentimeters(5)])[0].mm == 50
-    assert distance_in_mm(DistanceFeet(1)) == pytest.approx(304.8)
-    assert distance_in_mm(12) == 12
 
 
 def test_wheels():

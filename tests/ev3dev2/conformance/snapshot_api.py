@@ -220,10 +220,9 @@ def _attribute_has_setter(call):
 class _ModuleReader:
     """Walks one module's top level (and its class bodies) as it would run."""
 
-    def __init__(self, module_name, package_name, is_package):
+    def __init__(self, module_name, is_package):
         self.module_name = module_name
         self.package = module_name if is_package else module_name.rpartition(".")[0]
-        self.package_name = package_name
         self.names = {}
         self.star_imports = []
         self.classes = {}
@@ -279,7 +278,9 @@ class _ModuleReader:
                     if source not in self.star_imports:
                         self.star_imports.append(source)
                 else:
-                    self._set(alias.asname or alias.name, {"kind": "import", "target": source + "." + alias.name})
+                    self._set(
+                        alias.asname or alias.name, {"kind": "import", "target": source + "." + alias.name}
+                    )
         elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
             self._set(node.name, {"kind": "function", "signature": signature(node)})
         elif isinstance(node, ast.ClassDef):
@@ -396,7 +397,9 @@ class _ModuleReader:
                         and isinstance(member.value, ast.Call)
                         and ast.unparse(member.value.func) == "property"
                     ):
-                        setter = len(member.value.args) > 1 or any(k.arg == "fset" for k in member.value.keywords)
+                        setter = len(member.value.args) > 1 or any(
+                            k.arg == "fset" for k in member.value.keywords
+                        )
                         description["properties"][target.id] = "read-write" if setter else "read-only"
                     else:
                         self._assign(target, member.value, scope, set_constant)
@@ -462,10 +465,10 @@ def _self_attributes(class_node):
     return {name for name in names if is_public(name)}
 
 
-def describe_module(path, module_name, package_name):
+def describe_module(path, module_name):
     with open(path, encoding="utf-8") as file:
         tree = ast.parse(file.read(), filename=path)
-    reader = _ModuleReader(module_name, package_name, os.path.basename(path) == "__init__.py")
+    reader = _ModuleReader(module_name, os.path.basename(path) == "__init__.py")
     reader.walk(tree.body, reader.module_statement)
     names = {name: entry for name, entry in reader.names.items() if is_public(name)}
     return {"names": names, "star_imports": reader.star_imports, "classes": reader.classes}
@@ -479,7 +482,7 @@ def describe_package(source, package="ev3dev2"):
         relative = os.path.relpath(path, source)[: -len(".py")].split(os.sep)
         if relative[-1] == "__init__":
             relative = relative[:-1]
-        modules[".".join(relative)] = describe_module(path, ".".join(relative), package)
+        modules[".".join(relative)] = describe_module(path, ".".join(relative))
     _resolve_imports(modules)
     return {"package": package, "modules": modules}
 
@@ -567,7 +570,9 @@ class Api:
         if qualified not in self.classes:
             return []
         bases = [self.mro(base) for base in self.classes[qualified]["bases"] if base in self.classes]
-        sequences = [s for s in bases if s] + [[b for b in self.classes[qualified]["bases"] if b in self.classes]]
+        sequences = [s for s in bases if s] + [
+            [b for b in self.classes[qualified]["bases"] if b in self.classes]
+        ]
         result = [qualified]
         while any(sequences):
             sequences = [s for s in sequences if s]
@@ -588,7 +593,9 @@ class Api:
         for name in cls["attributes"]:
             members[name] = "attribute"
         for name, value in cls["constants"].items():
-            members[name] = "constant" if value is None else f"constant = {value}"
+            members[name] = (
+                "class" if value == "class" else "constant" if value is None else f"constant = {value}"
+            )
         for name, kind in cls["properties"].items():
             members[name] = f"property ({kind})"
         for name, kind in cls["methods"].items():
@@ -689,7 +696,32 @@ def compare(upstream, shim):
         theirs = upstream_api.value_of(key)
         if theirs != ours:
             differences.append((key, theirs, ours))
+    differences.extend(_inherited_extras(upstream_api, shim_api, upstream_items))
     return matched, differences, len(upstream_items)
+
+
+def _inherited_extras(upstream_api, shim_api, upstream_items):
+    """Members a shim class gets from a private base where upstream's class has none or another."""
+    found = []
+    for module_name, module in shim_api.modules.items():
+        if not _module_is_public(module_name):
+            continue
+        for class_name in filter(is_public, module["classes"]):
+            qualified = f"{module_name}.{class_name}"
+            visible = {
+                name for c in shim_api.mro(qualified) for name in shim_api.own_members(shim_api.classes[c])
+            }
+            own = shim_api.own_members(shim_api.classes[qualified])
+            for name in sorted(visible - set(own)):
+                key = f"{module_name}:{class_name}.{name}"
+                ours, theirs = shim_api.lookup(qualified, name), upstream_api.value_of(key)
+                if key in upstream_items or ours == theirs:
+                    continue
+                public_bases = [b for b in shim_api.public_bases(qualified) if b in shim_api.classes]
+                if any(shim_api.lookup(base, name) == ours for base in public_bases):
+                    continue  # it comes from a public base, and is reported there
+                found.append((key, theirs, ours))
+    return found
 
 
 def load_allowlist(path=ALLOWLIST):
@@ -732,7 +764,9 @@ class Report:
     def details(self):
         lines = [f"allow-list: {len(self.allowlist)} entries ({os.path.relpath(ALLOWLIST, REPO)})"]
         for key, theirs, ours in self.unexpected:
-            lines.append(f"  not allowed: {key}\n      python-ev3dev2: {theirs}\n      shim:           {ours}")
+            lines.append(
+                f"  not allowed: {key}\n      python-ev3dev2: {theirs}\n      shim:           {ours}"
+            )
         for entry in self.stale:
             lines.append(f"  stale allow-list entry (no such difference any more): {entry}")
         return "\n".join(lines)
