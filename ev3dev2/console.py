@@ -3,11 +3,19 @@ The EV3 LCD text console (python-ev3dev2 2.1.0), kept as a grid of characters.
 
 On a real EV3 the console is drawn by the terminal from ANSI escape codes.
 Here the text is kept in ``lines`` (one string per row) rather than printed,
-so the escape codes do not clutter the program's output.
+so the escape codes do not clutter the program's output, and each change is
+drawn on the simulated LCD (``_link.call('display', pixels)``, as Display.update).
 """
 
 import os  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
 import re
+
+from ev3dev2 import _link
+
+try:
+    from PIL import Image, ImageDraw, ImageFont
+except ImportError:  # without Pillow the console is not drawn
+    Image = None
 
 _XRES = 178
 _YRES = 128
@@ -76,6 +84,7 @@ class Console:
             column -= len(text) // 2
 
         self._put(text, column, row)
+        self._show()
 
     def set_font(self, font="Lat15-TerminusBold24x12", reset_console=True):
         """Set the console font (its character size sets rows and columns); optionally reset the console."""
@@ -96,11 +105,13 @@ class Console:
             column, row = self._position
         if 1 <= row <= len(self.lines):
             self.lines[row - 1] = self.lines[row - 1][: max(column - 1, 0)]
+        self._show()
 
     def reset_console(self):
         """Clear the console and move the cursor to 1,1."""
         self.lines = [""] * self._rows
         self._position = (1, 1)
+        self._show()
 
     def _put(self, text, column, row):
         """Write ``text`` from (column, row), wrapping at the right edge."""
@@ -114,3 +125,15 @@ class Console:
                 self.lines[row - 1] = line[: column - 1] + char + line[column:]
             column += 1
         self._position = (column, row)
+
+    def _show(self):
+        """Draw the text on the simulated LCD (black on white, one grid row per line)."""
+        if Image is None or not _link.connected() or not self._rows:
+            return
+        image = Image.new("L", (_XRES, _YRES), 255)
+        draw = ImageDraw.Draw(image)
+        font = ImageFont.load_default()
+        row_height = _YRES // self._rows
+        for i, line in enumerate(self.lines):
+            draw.text((1, i * row_height + max(row_height - 11, 0) // 2), line, fill=0, font=font)
+        _link.call("display", image.tobytes())

@@ -160,3 +160,20 @@ def test_examples_are_deterministic(name):
     a, _ = run_example(name)
     b, _ = run_example(name)
     assert a.trace.fingerprint() == b.trace.fingerprint()
+
+
+def test_console_text_is_drawn_on_the_lcd(tmp_path):
+    program = tmp_path / "console.py"
+    program.write_text(
+        "from ev3dev2.console import Console\n"
+        "c = Console()\n"
+        "c.text_at('Hello', column=2, row=2)\n"
+        "c.text_at('World', column=2, row=3)\n"
+    )
+    world = load_maze(find_maze("empty"))
+    result = run_programs([program], world, time_limit_s=5)
+    assert result.status == "finished", result.reason
+    frames = [e[3]["frame"] for e in result.trace.events if e[2] == "lcd"]
+    assert len(frames) >= 2
+    last = result.trace.lcd_frames[frames[-1]]
+    assert sum(1 for p in last if p < 128) > 50  # dark text pixels on the white screen
