@@ -101,6 +101,9 @@ class ShimLink:
                 return self.volume.get(robot, 100)
             if kind == "set_volume":
                 self.volume[robot] = details.get("pct", 100)
+            elif details.get("duration"):
+                s = self.scheduler
+                self._robot().sound_until_tick = int((s.now_us + details["duration"] * 1e6) // s.tick_us) + 1
             self._event("sound", {"kind": kind, **details})
             return None
         if feature == "display":

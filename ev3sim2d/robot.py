@@ -45,6 +45,7 @@ class Robot:
         self.physics = physics
         self.rng = rng
         self.tick = 0
+        self.sound_until_tick = 0  # the brick's speaker plays until this tick
         heading = math.radians(start.heading_deg)
         self.body = physics.add_robot(body_outline(spec), start.x_cm, start.y_cm, heading)
         self.group = self.body.group
@@ -64,7 +65,7 @@ class Robot:
         for s in sorted(spec.sensors, key=lambda s: s.port):
             kind = SENSORS[s.kind]
             address = f"ev3-ports:{s.port}"
-            if kind is ColorSensor:
+            if issubclass(kind, ColorSensor):
                 self.sensors[s.port] = kind(address, s, self, floor, ambient)
             else:
                 self.sensors[s.port] = kind(address, s, self)

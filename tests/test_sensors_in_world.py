@@ -87,3 +87,42 @@ def test_noise_is_reproducible_with_the_same_seed_and_differs_with_another(tmp_p
     assert a != c
     assert len(set(a)) > 3
     assert 70 <= sum(a) / len(a) <= 80
+
+
+NXT_ROBOT = """
+name: NXT sensors
+wheel_diameter_mm: 56
+axle_track_mm: 120
+body: {front_cm: 9, back_cm: 7, width_cm: 15}
+motors:
+  - {port: B, kind: large, wheel: left}
+  - {port: C, kind: large, wheel: right}
+sensors:
+  - {port: 1, kind: nxt-light, angle_deg: 0, radius_cm: 7}
+  - {port: 2, kind: nxt-sound, angle_deg: 180, radius_cm: 3}
+"""
+
+
+def test_nxt_light_and_sound_sensors_work_where_the_robot_has_them(run, tmp_path):
+    from ev3sim2d.world.robot_spec import load_robot
+
+    robot_file = tmp_path / "nxt.yaml"
+    robot_file.write_text(NXT_ROBOT)
+    result = run(
+        """
+        import time
+        from ev3dev2.sensor.lego import LightSensor, SoundSensor
+        from ev3dev2.sound import Sound
+        light, mic = LightSensor(), SoundSensor()
+        print(light.reflected_light_intensity, mic.sound_pressure)
+        Sound().play_tone(440, 1.0, play_type=Sound.PLAY_NO_WAIT_FOR_COMPLETE)
+        time.sleep(0.1)
+        print(mic.sound_pressure)
+        """,
+        color_world(66 - 7),
+        robot=load_robot(robot_file),
+    )
+    assert result.status == "finished", result.reason
+    lines = [o.text for o in result.trace.output]
+    assert lines[0] == f"{(20 + 0.55 * 5):.1f} 5.0"  # on the black line; a quiet room
+    assert lines[1] == "60.0"  # its own speaker

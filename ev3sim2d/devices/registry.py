@@ -6,6 +6,8 @@ from .color import ColorSensor
 from .gyro import GyroSensor
 from .infrared import InfraredSensor
 from .motor import KINDS as MOTOR_KINDS
+from .nxt_light import NxtLightSensor
+from .nxt_sound import NxtSoundSensor
 from .touch import TouchSensor
 from .ultrasonic import UltrasonicSensor
 
@@ -15,5 +17,7 @@ SENSORS = {
     "color": ColorSensor,
     "ultrasonic": UltrasonicSensor,
     "infrared": InfraredSensor,
+    "nxt-light": NxtLightSensor,
+    "nxt-sound": NxtSoundSensor,
 }
 MOTORS = tuple(MOTOR_KINDS)

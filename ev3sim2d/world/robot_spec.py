@@ -24,7 +24,7 @@ from .yaml_source import Fields, Node, load_yaml_text, read_text_file
 MOTOR_PORTS = ("outA", "outB", "outC", "outD")
 SENSOR_PORTS = ("in1", "in2", "in3", "in4")
 MOTOR_KINDS = ("large", "medium")
-SENSOR_KINDS = ("touch", "gyro", "color", "ultrasonic", "infrared")
+SENSOR_KINDS = ("touch", "gyro", "color", "ultrasonic", "infrared", "nxt-light", "nxt-sound")
 FACINGS = ("forward", "down")
 WHEELS = ("left", "right")
 
@@ -40,6 +40,8 @@ SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
         "cone_deg": (30.0, "degrees", "full opening angle of the infrared beam"),
         "max_cm": (70.0, "cm", "distance that reads as proximity 100"),
     },
+    "nxt-light": {"spot_cm": (2.0, "cm", "diameter of the floor spot the sensor sees")},
+    "nxt-sound": {},
 }
 """Kind -> option -> (default, unit, meaning): the extra keys a sensor of that kind may have."""
 
@@ -49,6 +51,8 @@ DEFAULT_FACING = {
     "color": "down",
     "ultrasonic": "forward",
     "infrared": "forward",
+    "nxt-light": "down",
+    "nxt-sound": "forward",
 }
 
 DEFAULT_ROBOT_COLOR = (230, 170, 30)
