@@ -95,6 +95,20 @@ class Simulation:
             "body": robot.spec.body.__dict__ if hasattr(robot.spec.body, "__dict__") else None,
             "wheel_diameter_mm": robot.spec.wheel_diameter_mm,
             "axle_track_mm": robot.spec.axle_track_mm,
+            "color": list(robot.spec.color),
+            # where each sensor sits and what it sees, in the order of "sensors" (for drawing)
+            "sensor_mounts": [
+                {
+                    "port": port,
+                    "kind": s.spec.kind,
+                    "angle_deg": s.spec.angle_deg,
+                    "radius_cm": s.spec.radius_cm,
+                    "facing": s.spec.facing,
+                    "aim_deg": s.spec.aim_deg,
+                    **s.spec.options,
+                }
+                for port, s in robot.sensors.items()
+            ],
         }
 
     def finish(self) -> Trace:

@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 from ..program import ProgramError
+from ..render.outputs import add_picture_arguments, write_pictures
 from ..run import RunResult, echo_line, run_programs
 from ..simulation import StartBlocked
 from ..summary import run_summary, write_summary
@@ -56,6 +57,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="S",
         help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
     )
+    add_picture_arguments(parser)
 
 
 def _press(text: str) -> ButtonPress:
@@ -70,10 +72,8 @@ def _write_outputs(args, result: RunResult) -> None:
         result.trace.save(args.trace)
     if args.summary:
         write_summary(run_summary(result, args.programs, args.maze, args.seed, args.time), args.summary)
-    if args.png:
-        from ..render.frame import write_png
-
-        write_png(result.trace, args.png)
+    if args.png or args.video or args.frames:
+        write_pictures(result.trace, args)
 
 
 def main(args) -> int:

@@ -1,12 +1,13 @@
-"""A plain top-down drawing of a run's last moment: the world, each robot's trail and body.
+"""Frames of a run, drawn from its trace alone: the world, the robots and what they sense, and the panel.
 
-Reads only the trace (the world's YAML text is in it).  The full renderer,
-with sensors, panel and video, builds on this later.
+The still world (and the panel's headings) is drawn once into a background;
+trails grow on a copy of it as time moves on; each frame copies that and
+draws only what moves: the recent trail, beams, robots, contact bursts,
+captions and the panel's values.
 """
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import cv2
@@ -14,61 +15,172 @@ import numpy as np
 
 from ..trace import Trace
 from ..world.maze_file import parse_maze
+from . import palette
+from .layout import FrameLayout
+from .panel import Panel
+from .robot_layer import (
+    TRAIL_RECENT_S,
+    beam_distance_cm,
+    contact_point,
+    draw_beam,
+    draw_contact,
+    draw_recent_trail,
+    draw_robot,
+    draw_trail,
+    robot_looks,
+)
+from .text import Font, draw_label, draw_text
+from .timeline import Timeline
+from .walls import Walls
+from .world_layer import draw_world
 
-ROBOT_COLORS = [(30, 170, 230), (200, 90, 30), (60, 160, 60), (150, 60, 160)]  # BGR
-
-
-def world_image(grid, px_per_cm: float) -> np.ndarray:
-    """The grid as a BGR image, row 0 at the bottom."""
-    rgb = np.array(grid.display_rgb_rows(), dtype=np.uint8)[::-1]  # top row first
-    cell_px = max(1, int(round(grid.cell_cm * px_per_cm)))
-    image = np.repeat(np.repeat(rgb, cell_px, axis=0), cell_px, axis=1)[:, :, ::-1].copy()
-    # faint cell lines
-    image[::cell_px, :, :] = (image[::cell_px, :, :] * 0.9).astype(np.uint8)
-    image[:, ::cell_px, :] = (image[:, ::cell_px, :] * 0.9).astype(np.uint8)
-    return image
-
-
-def draw_final_frame(trace: Trace, width_px: int = 800) -> np.ndarray:
-    world = parse_maze(trace.world["text"], trace.world.get("name", "<trace>"))
-    grid = world.grid
-    cell_px = max(1, int(round(width_px / grid.width)))
-    px_per_cm = cell_px / grid.cell_cm
-    image = world_image(grid, px_per_cm)
-    height = image.shape[0]
-
-    def to_px(x: float, y: float) -> tuple[int, int]:
-        return int(round(x * px_per_cm)), int(round(height - y * px_per_cm))
-
-    for i, robot in enumerate(trace.robots):
-        color = ROBOT_COLORS[i % len(ROBOT_COLORS)]
-        poses = trace.poses(i)
-        points = np.array([to_px(x, y) for x, y, _ in poses[:: max(1, len(poses) // 2000)]], dtype=np.int32)
-        if len(points) > 1:
-            cv2.polylines(image, [points], False, color, max(1, int(px_per_cm * 0.4)), cv2.LINE_AA)
-        x, y, heading = poses[-1]
-        body = robot.get("body") or {"front_cm": 9, "back_cm": 9, "width_cm": 13}
-        h = math.radians(heading)
-        corners = [
-            (body["front_cm"], body["width_cm"] / 2),
-            (-body["back_cm"], body["width_cm"] / 2),
-            (-body["back_cm"], -body["width_cm"] / 2),
-            (body["front_cm"], -body["width_cm"] / 2),
-        ]
-        outline = np.array(
-            [
-                to_px(x + cx * math.cos(h) - cy * math.sin(h), y + cx * math.sin(h) + cy * math.cos(h))
-                for cx, cy in corners
-            ],
-            dtype=np.int32,
-        )
-        cv2.fillPoly(image, [outline], color, cv2.LINE_AA)
-        cv2.polylines(image, [outline], True, (40, 40, 40), 1, cv2.LINE_AA)
-        tip = to_px(x + body["front_cm"] * math.cos(h), y + body["front_cm"] * math.sin(h))
-        cv2.line(image, to_px(x, y), tip, (20, 20, 20), max(1, int(px_per_cm * 0.5)), cv2.LINE_AA)
-    return image
+DEFAULT_SIZE = (1280, 720)
+CAPTION_MIN_S = 1.5  # speech captions stay at least this long in the video
 
 
-def write_png(trace: Trace, path: str | Path, width_px: int = 800) -> None:
-    if not cv2.imwrite(str(path), draw_final_frame(trace, width_px)):
+class FrameRenderer:
+    """Draws the frame at any simulated time t; fastest when t only moves forward."""
+
+    def __init__(self, trace: Trace, size: tuple[int, int] = DEFAULT_SIZE, speed: float = 1.0) -> None:
+        self.trace = trace
+        self.speed = speed
+        self.timeline = Timeline(trace)
+        self.world = parse_maze(trace.world["text"], trace.world.get("name") or "<trace>")
+        self.layout = FrameLayout.video(self.world.grid.size_cm, *size)
+        self.view = self.layout.view
+        self.looks = robot_looks(trace.robots)
+        self.walls = Walls(self.world.grid.wall_rectangles())
+        self.label_font = Font(max(8, int(round(self.layout.font_px * 0.85))))
+        self.trail_px = max(1, self.view.length(0.6))
+        self.map_bounds = (0, 0, self.layout.panel_x, self.layout.height)
+        self.panel = Panel(trace, self.timeline, self.looks, self.layout, speed)
+        background = np.empty((self.layout.height, self.layout.width, 3), dtype=np.uint8)
+        background[:] = palette.SURROUND
+        draw_world(background, self.world, self.view, self.label_font)
+        self.panel.draw_base(background)
+        self.background = background
+        self._reset_trails()
+
+    def _reset_trails(self) -> None:
+        self._canvas = self.background.copy()
+        self._trail_tick = [-1] * len(self.looks)
+
+    def _grow_trails(self, tick: int) -> None:
+        """Draw the old part of each path (and the marks of past contacts) onto the canvas, up to `tick`."""
+        if any(done > tick for done in self._trail_tick):
+            self._reset_trails()
+        tl = self.timeline
+        for i, look in enumerate(self.looks):
+            done = self._trail_tick[i]
+            if tick <= done:
+                continue
+            draw_trail(self._canvas, self.view, tl.path(i, done, tick), look.trail_color, self.trail_px)
+            for contact in tl.contact_ticks(i):
+                if done < contact <= tick:
+                    point = contact_point(look, tl.pose(i, int(contact)), self.walls)
+                    if point is not None:
+                        draw_contact(self._canvas, self.view, point, active=False)
+            self._trail_tick[i] = tick
+
+    def frame_at(self, t_s: float, out: np.ndarray | None = None) -> np.ndarray:
+        """The frame showing simulated time t_s (BGR, height × width × 3), drawn into `out` if given."""
+        tl = self.timeline
+        tick = tl.tick_at(t_s)
+        recent_ticks = int(round(TRAIL_RECENT_S / max(self.trace.tick_s, 1e-6)))
+        self._grow_trails(max(tick - recent_ticks, -1))
+        if out is None:
+            frame = self._canvas.copy()
+        else:
+            frame = out
+            np.copyto(frame, self._canvas)
+        for i, look in enumerate(self.looks):
+            first = max(self._trail_tick[i], -1)
+            draw_recent_trail(frame, self.view, look, tl.path(i, first, tick), self.trail_px + 1)
+        for i, look in enumerate(self.looks):
+            pose = tl.pose(i, tick)
+            pressed = {}
+            for sensor in look.sensors:
+                reading = tl.sensor(i, sensor.port, t_s)
+                distance = beam_distance_cm(sensor, reading)
+                if distance is not None:
+                    draw_beam(
+                        frame, self.view, self.label_font, sensor, pose, distance, self.walls, self.map_bounds
+                    )
+                if sensor.kind == "touch" and reading is not None and reading[1]:
+                    pressed[sensor.port] = bool(reading[1][0])
+            touching = tl.touching(i, tick)
+            draw_robot(frame, self.view, look, pose, pressed, touching)
+            if touching:
+                point = contact_point(look, pose, self.walls)
+                if point is not None:
+                    draw_contact(frame, self.view, point, active=True)
+        self._draw_captions(frame, t_s)
+        self.panel.draw(frame, t_s, tick)
+        return frame
+
+    def _draw_captions(self, frame: np.ndarray, t_s: float) -> None:
+        """What the robots say (and which sound files they play), at the bottom of the map."""
+        lines = []
+        hold = CAPTION_MIN_S * self.speed
+        for s in self.timeline.sounds:
+            if s.kind != "tone" and s.start_s <= t_s < max(s.end_s, s.start_s + hold):
+                who = self.looks[s.robot].name if len(self.looks) > 1 else "robot"
+                lines.append(f"{who} says “{s.text}”" if s.kind == "speech" else f"{who} plays {s.text}")
+        font = self.panel.bold
+        y = self.layout.height - (font.height + 10) * len(lines) - 8
+        for line in lines:
+            text = font.fit(line, self.layout.panel_x - 40)
+            x = (self.layout.panel_x - font.width(text)) // 2 - 6
+            draw_label(frame, font, text, x, y, palette.CAPTION_FG, palette.CAPTION_BG, pad=5)
+            y += font.height + 10
+
+
+def draw_final_frame(trace: Trace, size: tuple[int, int] = DEFAULT_SIZE) -> np.ndarray:
+    """The frame at the end of the run."""
+    renderer = FrameRenderer(trace, size)
+    return renderer.frame_at(renderer.timeline.end_s)
+
+
+def write_png(trace: Trace, path: str | Path, size: tuple[int, int] = DEFAULT_SIZE) -> None:
+    """A PNG of the end of the run (`run --png`)."""
+    save_png(draw_final_frame(trace, size), path)
+
+
+def save_png(image: np.ndarray, path: str | Path) -> None:
+    if not cv2.imwrite(str(path), image, [cv2.IMWRITE_PNG_COMPRESSION, 3]):
         raise OSError(f"could not write {path}")
+
+
+def draw_world_picture(trace: Trace, width_px: int = 800) -> np.ndarray:
+    """The world with every robot at its start, and a caption: for previews and documentation (`show`)."""
+    world = parse_maze(trace.world["text"], trace.world.get("name") or "<trace>")
+    grid = world.grid
+    layout = FrameLayout.picture(grid.size_cm, width_px, caption_lines=2)
+    image = np.empty((layout.height, layout.width, 3), dtype=np.uint8)
+    image[:] = palette.SURROUND
+    font = Font(layout.font_px)
+    label_font = Font(max(8, int(round(layout.font_px * 0.85))))
+    draw_world(image, world, layout.view, label_font)
+    timeline = Timeline(trace)
+    for i, look in enumerate(robot_looks(trace.robots)):
+        draw_robot(image, layout.view, look, timeline.pose(i, -1))
+    width_cm, height_cm = grid.size_cm
+    y = layout.view.box[3] + max(2, layout.font_px // 2)
+    bold = Font(layout.font_px, bold=True)
+    draw_text(
+        image,
+        bold,
+        bold.fit(world.title, layout.width - 8),
+        8,
+        y,
+        palette.HEADING,
+        background=palette.SURROUND,
+    )
+    y += int(layout.font_px * 1.45)
+    facts = f"{width_cm:g} × {height_cm:g} cm, {grid.width} × {grid.height} cells of {grid.cell_cm:g} cm"
+    if world.regions:
+        facts += "; regions: " + ", ".join(world.regions)
+    draw_text(
+        image, font, font.fit(facts, layout.width - 16), 8, y, palette.TEXT_DIM, background=palette.SURROUND
+    )
+    return image
