@@ -1,0 +1,155 @@
+"""`ev3sim2d grade`: grade programs (a file, a student's folder, or a class folder) in a lesson."""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+from ..grading.grader import default_jobs, grade
+from ..grading.lesson import list_shipped_lessons, load_lesson
+from ..grading.report import details, score_text, table, write_csv, write_json, write_junit
+from ..grading.submission import DEFAULT_ENTRY, find_submissions
+from ..grading.worker import CheckError
+from ..world.source_error import WorldFileError
+from .exit_codes import EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, fail
+
+NAME = "grade"
+HELP = "grade programs in a lesson: one file, a student's folder, or a folder of a whole class"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    lessons = ", ".join(list_shipped_lessons()) or "none"
+    parser.add_argument("lesson", metavar="LESSON", help=f"a lesson folder, or a shipped lesson: {lessons}")
+    parser.add_argument(
+        "programs",
+        nargs="+",
+        metavar="PROG",
+        help="a program file, a student's folder (with main.py), or a folder with one program or folder per student",
+    )
+    parser.add_argument(
+        "--jobs",
+        type=int,
+        default=None,
+        metavar="N",
+        help=f"grade N runs at a time (default: {default_jobs()})",
+    )
+    parser.add_argument(
+        "--json",
+        metavar="FILE",
+        help="write the results as JSON, rewritten as each submission finishes; run again with the same file "
+        "to resume: unchanged submissions already in it are not graded again",
+    )
+    parser.add_argument(
+        "--junit", metavar="FILE", help="write JUnit XML (one test per variant and check), for CI"
+    )
+    parser.add_argument("--csv", metavar="FILE", help="write one CSV row per submission, for the class list")
+    parser.add_argument(
+        "--videos", metavar="DIR", help="keep a video (or the trace and a picture) of each failed variant"
+    )
+    parser.add_argument(
+        "--entry",
+        default=DEFAULT_ENTRY,
+        metavar="NAME",
+        help=f"the file to run in a student's folder (default: {DEFAULT_ENTRY})",
+    )
+    parser.add_argument(
+        "--regrade", action="store_true", help="grade everything again, even what --json already holds"
+    )
+    parser.add_argument("--details", action="store_true", help="show every check of every submission")
+    parser.add_argument(
+        "--pass-percent",
+        type=float,
+        default=100.0,
+        metavar="P",
+        help="with a single program, exit with status 1 when it scores below P%% (default: 100)",
+    )
+    parser.add_argument("--quiet", action="store_true", help="no progress lines while grading")
+
+
+def main(args) -> int:
+    if args.jobs is not None and args.jobs < 1:
+        return fail("--jobs must be at least 1")
+    try:
+        lesson = load_lesson(args.lesson)
+    except WorldFileError as err:
+        return fail(str(err))
+    submissions = find_submissions(args.programs, args.entry)
+    if not submissions:
+        return fail("no programs to grade")
+
+    total = len(submissions)
+    finished = {"n": 0}
+
+    def progress(result) -> None:
+        finished["n"] += 1
+        if not args.quiet:
+            print(
+                f"[{finished['n']:>{len(str(total))}}/{total}] {result.submission}: {score_text(result)} ({result.status})",
+                file=sys.stderr,
+            )
+
+    on_failed_run = None
+    failed_runs: list[tuple[str, str, Path]] = []
+    holding = Path(tempfile.mkdtemp(prefix="ev3sim2d-videos-")) if args.videos else None
+    if args.videos:
+
+        def on_failed_run(submission, variant_index, trace_path) -> None:
+            # videos are made once grading is over: no rendering threads while workers are forked
+            kept = holding / f"{len(failed_runs)}.npz"
+            shutil.copyfile(trace_path, kept)
+            failed_runs.append((submission.name, lesson.variants[variant_index].name, kept))
+
+    try:
+        grading = grade(lesson, submissions, args.jobs, args.json, args.regrade, progress, on_failed_run)
+        if args.videos:
+            _keep_failed_runs(Path(args.videos), failed_runs, args.quiet)
+    except CheckError as err:  # a bug in a check, most likely in the lesson's check_*.py
+        return fail(str(err))
+    except KeyboardInterrupt:
+        kept = f"; the submissions graded so far are in {args.json}" if args.json else ""
+        print(f"ev3sim2d: grading interrupted{kept}; run the same command again to go on", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        if holding is not None:
+            shutil.rmtree(holding, ignore_errors=True)
+    try:
+        if args.json:
+            write_json(args.json, grading)
+        if args.junit:
+            write_junit(args.junit, grading)
+        if args.csv:
+            write_csv(args.csv, grading)
+    except OSError as err:
+        return fail(f"could not write the results: {err}")
+
+    if len(grading.results) == 1 or args.details:
+        for result in grading.results:
+            print(details(result))
+    if len(grading.results) > 1:
+        print(table(grading))
+    if grading.reused and not args.quiet:
+        print(
+            f"ev3sim2d: {grading.reused} result(s) taken from {args.json} (unchanged submissions)",
+            file=sys.stderr,
+        )
+    if len(grading.results) == 1:
+        result = grading.results[0]
+        percent = 100.0 * result.score / result.max_score if result.max_score else 0.0
+        if percent + 1e-9 < args.pass_percent:
+            return EXIT_PROGRAM_ERROR
+    return EXIT_OK
+
+
+def _keep_failed_runs(folder: Path, failed_runs: list[tuple[str, str, Path]], quiet: bool) -> None:
+    from ..grading.videos import keep_failed_run, video_writer
+
+    if not failed_runs:
+        return
+    if not quiet:
+        what = "videos" if video_writer() is not None else "traces and pictures (no video writer here)"
+        print(f"ev3sim2d: writing {what} of {len(failed_runs)} failed run(s) to {folder}", file=sys.stderr)
+    for submission, variant, trace_path in failed_runs:
+        keep_failed_run(folder, submission, variant, trace_path)

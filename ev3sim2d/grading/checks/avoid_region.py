@@ -1,0 +1,30 @@
+"""`avoid_region`: the robot never enters a region (a danger zone, a side line it must not take)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..check import POINT_PARAM, Check, Outcome, Param, register
+from ..run_record import RunRecord, region_inside, seconds
+from .reach_region import what
+
+
+@register
+class AvoidRegion(Check):
+    """The point (the centre by default) is never inside the region."""
+
+    KIND = "avoid_region"
+    SUMMARY = "the robot never enters a region of the world"
+    PARAMS = (
+        Param("region", "region", "name of the region in the world file"),
+        Param("label", "text", "how messages name the region (default: 'the REGION')", default=None),
+        POINT_PARAM,
+    )
+
+    def evaluate(self, run: RunRecord) -> Outcome:
+        name = self.label or f"the {self.region}"
+        inside = np.flatnonzero(region_inside(run.world, self.region, run.track(self.point)))
+        if len(inside):
+            t = float(run.t[inside[0]])
+            return Outcome(False, f"{what(self.point)} went into {name} at {seconds(t)}", t)
+        return Outcome(True, f"{what(self.point)} kept out of {name}", None)

@@ -1,0 +1,219 @@
+"""Grade submissions in a lesson: workers in parallel, results saved as each submission is complete.
+
+Each submission runs once per variant, each run in its own worker process
+(`worker.py`), at most `jobs` at a time; the worker scores its run with the
+lesson's checks.  A run that leaves no result (killed at its limit, crashed)
+gets every check failed with the reason.  When all of a submission's variants are in, its
+result is complete: it is handed to `on_result` and the results file is
+rewritten (atomically), so an interrupted class run loses nothing that was
+done.  Run again with the same results file and unchanged submissions are
+not graded again (their key, a hash of the lesson and the submission's files,
+is the same, and so would be their score).
+"""
+
+from __future__ import annotations
+
+import gc
+import json
+import os
+import shutil
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .lesson import Lesson
+from .result import SubmissionResult, VariantResult
+from .scoring import not_run
+from .submission import Submission
+from .worker import Job, JobOutcome, RunningJob, collect, start_job
+
+POLL_S = 0.01
+RESULTS_FORMAT = "ev3sim2d-grades-1"
+
+
+@dataclass
+class Grading:
+    """The results of grading, in the order the submissions were given."""
+
+    lesson: Lesson
+    results: list[SubmissionResult]
+    reused: int = 0  # results taken over from an earlier run
+    wall_s: float = 0.0
+
+
+@dataclass
+class _Pending:
+    submission: Submission
+    key: str
+    variants: dict[int, VariantResult] = field(default_factory=dict)
+
+
+def default_jobs() -> int:
+    return max(1, os.cpu_count() or 1)
+
+
+def can_fork() -> bool:
+    return hasattr(os, "fork")
+
+
+def variant_result_of(lesson: Lesson, variant_index: int, outcome: JobOutcome) -> VariantResult:
+    """The worker's score for the variant, or every check failed with the reason the run left none."""
+    if outcome.variant is not None:
+        return outcome.variant
+    return not_run(lesson, variant_index, outcome.outcome, outcome.message)
+
+
+def load_results(path: Path, lesson: Lesson) -> dict[str, SubmissionResult]:
+    """Results of an earlier run of the same lesson, by key (nothing if the file is missing or another lesson's)."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(data, dict) or data.get("format") != RESULTS_FORMAT or data.get("lesson") != lesson.id:
+        return {}
+    found = {}
+    for item in data.get("submissions", []):
+        try:
+            result = SubmissionResult.from_dict(item)
+        except (KeyError, TypeError):
+            continue
+        if result.key and result.status != "crashed":  # a crash may have been the machine's: run it again
+            found[result.key] = result
+    return found
+
+
+def results_document(lesson: Lesson, results: list[SubmissionResult]) -> dict:
+    """The JSON results file: the lesson, and per submission its score, status, variants and checks."""
+    return {
+        "format": RESULTS_FORMAT,
+        "lesson": lesson.id,
+        "title": lesson.title,
+        "max_score": lesson.max_score,
+        "variants": [{"name": v.name, "hidden": v.hidden, "world": v.world().name} for v in lesson.variants],
+        "submissions": [r.to_dict() for r in results],
+    }
+
+
+def write_results(path: Path, lesson: Lesson, results: list[SubmissionResult]) -> None:
+    """Write the results file atomically (a reader never sees half a file)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    part = path.with_name(path.name + ".part")
+    part.write_text(json.dumps(results_document(lesson, results), indent=2) + "\n", encoding="utf-8")
+    os.replace(part, path)
+
+
+def grade(
+    lesson: Lesson,
+    submissions: list[Submission],
+    jobs: int | None = None,
+    results_path: str | Path | None = None,
+    regrade: bool = False,
+    on_result: Callable[[SubmissionResult], None] | None = None,
+    on_failed_run: Callable[[Submission, int, Path], None] | None = None,
+    use_fork: bool | None = None,
+) -> Grading:
+    """Grade every submission in every variant of the lesson; see the module docstring.
+
+    `on_failed_run(submission, variant_index, trace_path)` is called (before the trace is deleted) for each
+    run that did not pass every check, e.g. to keep its trace or render a video.
+    """
+    started = time.monotonic()
+    jobs = max(1, jobs or default_jobs())
+    use_fork = can_fork() if use_fork is None else use_fork
+    results_file = Path(results_path) if results_path else None
+    digest = lesson.digest()
+    earlier = load_results(results_file, lesson) if results_file and not regrade else {}
+    for variant in lesson.variants:
+        variant.world()  # read before forking, so every worker has it
+
+    done: dict[int, SubmissionResult] = {}
+    pending: dict[int, _Pending] = {}
+    queue: list[Job] = []
+    workdir = Path(tempfile.mkdtemp(prefix="ev3sim2d-grade-"))
+    reused = 0
+
+    def finish(index: int, result: SubmissionResult) -> None:
+        done[index] = result
+        if results_file is not None:
+            write_results(results_file, lesson, [done[i] for i in sorted(done)])
+        if on_result is not None:
+            on_result(result)
+
+    for index, submission in enumerate(submissions):
+        key = submission.key(digest)
+        if key in earlier:
+            result = earlier[key]
+            result.submission = submission.name
+            done[index] = result
+            reused += 1
+            continue
+        if submission.entry is None:
+            pending_result = SubmissionResult(
+                submission.name, key, problem=submission.problem, max_points=lesson.max_score
+            )
+            done[index] = pending_result
+            continue
+        pending[index] = _Pending(submission, key)
+        for v, variant in enumerate(lesson.variants):
+            queue.append(
+                Job(
+                    submission=index,
+                    variant=v,
+                    entry=str(submission.entry.resolve()),
+                    folder=str(workdir / f"s{index}-v{v}"),
+                    lesson=str(lesson.folder),
+                    variant_name=variant.name,
+                    time_s=variant.time_s,
+                    seed=variant.seed,
+                    hang_s=lesson.limits.hang_s,
+                    wall_s=lesson.limits.wall_for(variant.time_s),
+                    cpu_s=lesson.limits.cpu_for(variant.time_s),
+                    memory_mb=lesson.limits.memory_mb,
+                    output_mb=lesson.limits.output_mb,
+                    keep_trace=on_failed_run is not None,
+                )
+            )
+    if results_file is not None and (done or not submissions):
+        write_results(results_file, lesson, [done[i] for i in sorted(done)])
+    for index in sorted(done):
+        if on_result is not None:
+            on_result(done[index])
+
+    running: list[RunningJob] = []
+    queue.reverse()  # pop() from the end: submission by submission, in the order given
+    gc.collect()
+    gc.freeze()  # a forked worker's collections then skip everything the grader holds: a third faster
+    try:
+        while queue or running:
+            while queue and len(running) < jobs:
+                job = queue.pop()
+                running.append(start_job(job, lesson, use_fork))
+            time.sleep(POLL_S)
+            now = time.monotonic()
+            for worker in list(running):
+                if not worker.poll():
+                    if now > worker.deadline:
+                        worker.kill("wall")
+                    continue
+                running.remove(worker)
+                job = worker.job
+                outcome = collect(worker)
+                variant_result = variant_result_of(lesson, job.variant, outcome)
+                entry = pending[job.submission]
+                if on_failed_run is not None and outcome.trace_path is not None:
+                    on_failed_run(entry.submission, job.variant, outcome.trace_path)
+                shutil.rmtree(job.folder, ignore_errors=True)
+                entry.variants[job.variant] = variant_result
+                if len(entry.variants) == len(lesson.variants):
+                    del pending[job.submission]
+                    variants = [entry.variants[v] for v in range(len(lesson.variants))]
+                    finish(job.submission, SubmissionResult(entry.submission.name, entry.key, variants))
+    finally:
+        gc.unfreeze()
+        for worker in running:
+            worker.kill("grading was interrupted")
+            worker.reap()
+        shutil.rmtree(workdir, ignore_errors=True)
+    return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started)

@@ -1,0 +1,273 @@
+"""A lesson: a task in one or more worlds (variants), and the checks that score it (lessons/<id>/lesson.yaml).
+
+The folder holds `lesson.yaml`, `README.md` (the task as a student reads it),
+`starter.py`, `solution.py`, world files the lesson needs, and optionally
+`check_*.py` files with check kinds of its own.  Every mistake in lesson.yaml
+is a WorldFileError naming the file, the line and what to write instead.  The
+format is described in docs/lessons.md.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib.util
+import inspect
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..simulation import Simulation, StartBlocked
+from ..world.source_error import WorldFileError
+from ..world.yaml_source import Fields, Node, load_yaml_text, read_text_file
+from .check import Check, builtin_checks, checks_from_node
+from .variant import Variant, read_robot, variant_from_node
+
+LESSON_FILE = "lesson.yaml"
+LESSON_KEYS = (
+    "title",
+    "goal",
+    "robot",
+    "time_s",
+    "seed",
+    "limits",
+    "variants",
+    "checks",
+    "starter",
+    "solution",
+)
+LIMIT_KEYS = ("wall_s", "cpu_s", "memory_mb", "hang_s", "output_mb")
+GRADER_VERSION = (
+    "1"  # part of every result's key: bump it when scoring changes, so old results are not reused
+)
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Safety limits on each run's process, apart from the lesson's simulated time limit.
+
+    Unset wall and CPU limits follow the simulated time: 30 s plus a quarter of it.
+    """
+
+    wall_s: float | None = None
+    cpu_s: float | None = None
+    memory_mb: float = 512.0  # address space the run's process may add to what it has at the start
+    hang_s: float = 3.0  # real seconds without the virtual clock moving before a program counts as stuck
+    output_mb: float = 16.0  # the most a program may write to the console outside print()
+
+    def wall_for(self, time_s: float) -> float:
+        return self.wall_s if self.wall_s is not None else 30.0 + time_s / 4
+
+    def cpu_for(self, time_s: float) -> float:
+        return self.cpu_s if self.cpu_s is not None else 30.0 + time_s / 4
+
+
+@dataclass
+class Lesson:
+    """A lesson as read from its folder."""
+
+    id: str
+    folder: Path
+    title: str
+    goal: str
+    time_s: float
+    variants: list[Variant]
+    checks: list[Check]
+    limits: Limits = field(default_factory=Limits)
+    starter: Path | None = None
+    solution: Path | None = None
+    text: str = ""
+
+    @property
+    def source(self) -> Path:
+        return self.folder / LESSON_FILE
+
+    @property
+    def variant_points(self) -> float:
+        """The points one variant is worth (the sum of the checks' points)."""
+        return sum(check.points for check in self.checks)
+
+    @property
+    def max_score(self) -> float:
+        return self.variant_points * len(self.variants)
+
+    def variant(self, name: str) -> Variant:
+        for variant in self.variants:
+            if variant.name == name:
+                return variant
+        raise KeyError(
+            f"lesson {self.id!r} has no variant {name!r}; its variants: {', '.join(v.name for v in self.variants)}"
+        )
+
+    def visible_variants(self) -> list[Variant]:
+        return [v for v in self.variants if not v.hidden]
+
+    def digest(self) -> str:
+        """A hash of everything that decides a score: lesson file, check files, worlds, robots, grader version."""
+        h = hashlib.sha256(GRADER_VERSION.encode())
+        h.update(self.text.encode())
+        for path in sorted(self.folder.glob("check_*.py")):
+            h.update(path.read_bytes())
+        for variant in self.variants:
+            world = variant.world()
+            h.update((world.text or "").encode())
+            h.update(repr(dataclasses.replace(world.robot, source=None)).encode())
+            h.update(repr(world.starts).encode())
+        return h.hexdigest()[:16]
+
+
+# -- finding lessons ----------------------------------------------------------------------
+
+
+def shipped_lessons_dir() -> Path:
+    """The lessons that come with ev3sim2d (an installed copy first, else the repository's `lessons/`)."""
+    package = Path(__file__).resolve().parents[1]
+    for candidate in (package / "_lessons", package.parent / "lessons"):
+        if candidate.is_dir():
+            return candidate
+    return package.parent / "lessons"
+
+
+def list_shipped_lessons() -> list[str]:
+    """Ids of the shipped lessons."""
+    root = shipped_lessons_dir()
+    return sorted(p.parent.name for p in root.glob(f"*/{LESSON_FILE}")) if root.is_dir() else []
+
+
+def find_lesson(name_or_path: str | Path) -> Path:
+    """A lesson folder: a path to a folder or its lesson.yaml, else a shipped lesson by id."""
+    candidate = Path(name_or_path)
+    if candidate.is_file() and candidate.name == LESSON_FILE:
+        return candidate.parent
+    if (candidate / LESSON_FILE).is_file():
+        return candidate
+    shipped = shipped_lessons_dir() / str(name_or_path)
+    if (shipped / LESSON_FILE).is_file():
+        return shipped
+    known = ", ".join(list_shipped_lessons()) or "none"
+    raise WorldFileError(
+        str(name_or_path),
+        None,
+        None,
+        f"no lesson folder (with a {LESSON_FILE}) and no shipped lesson by this name; shipped lessons: {known}",
+    )
+
+
+# -- reading ------------------------------------------------------------------------------
+
+
+def load_lesson(name_or_path: str | Path) -> Lesson:
+    """Read a lesson by folder, lesson.yaml path or shipped id; worlds and check parameters are checked now."""
+    folder = find_lesson(name_or_path).resolve()
+    path = folder / LESSON_FILE
+    text = read_text_file(path)
+    root = load_yaml_text(text, str(path))
+    if not root.is_mapping:
+        raise root.error(
+            f"a lesson file is a mapping of keys like `title: Stop at the wall`, got {root.describe()}"
+        )
+    fields = Fields(root, "the lesson file", LESSON_KEYS)
+    title = fields.text("title", example="title: Stop at the wall").strip()
+    goal = " ".join(fields.text("goal", example="goal: Drive to the wall and stop 10 cm before it.").split())
+    time_s = fields.number("time_s", unit="simulated seconds", example="time_s: 30")
+    if time_s <= 0:
+        raise fields.get("time_s").error(f"'time_s' must be more than 0, got {time_s:g}")
+    seed = fields.integer("seed", default=0, example="seed: 0")
+    robot = read_robot(fields.get("robot"), folder) if "robot" in fields else None
+    limits = _limits(fields.get("limits")) if "limits" in fields else Limits()
+
+    variants_node = fields.require("variants", "variants: [{name: basic, world: maze}]")
+    items = variants_node.as_list("variants", "variants: [{name: basic, world: maze}]")
+    if not items:
+        raise variants_node.error("a lesson needs at least one variant; e.g. `- {name: basic, world: maze}`")
+    variants: list[Variant] = []
+    for item in items:
+        variant, vfields = variant_from_node(item, folder, time_s, seed, robot)
+        if any(v.name == variant.name for v in variants):
+            raise vfields.get("name").error(
+                f"two variants are named '{variant.name}'; give each its own name"
+            )
+        _check_start_fits(variant, vfields.get("start") or vfields.get("world"))
+        variants.append(variant)
+    if all(v.hidden for v in variants):
+        raise variants_node.error(
+            "every variant is hidden; leave at least one for students to try", column=False
+        )
+
+    kinds = {**builtin_checks(), **_lesson_check_kinds(folder, path)}
+    checks = checks_from_node(fields.require("checks", "checks: [{kind: reach_region, region: goal}]"), kinds)
+    for variant in variants:
+        world = variant.world()
+        for check in checks:
+            check.validate(world, variant.name)
+
+    return Lesson(
+        id=folder.name,
+        folder=folder,
+        title=title,
+        goal=goal,
+        time_s=time_s,
+        variants=variants,
+        checks=checks,
+        limits=limits,
+        starter=_program(fields, "starter", folder),
+        solution=_program(fields, "solution", folder),
+        text=text,
+    )
+
+
+def _check_start_fits(variant: Variant, node: Node) -> None:
+    """The robot must fit where the variant starts it (not half inside a wall)."""
+    world = variant.world()
+    try:
+        Simulation(world, [("robot", world.robot, world.start)])
+    except StartBlocked as err:
+        raise node.error(f"variant '{variant.name}': {err}") from None
+
+
+def _program(fields: Fields, key: str, folder: Path) -> Path | None:
+    name = fields.text(key, default=f"{key}.py", example=f"{key}: {key}.py").strip()
+    path = folder / name
+    if key in fields and not path.is_file():
+        raise fields.get(key).error(f"no file '{name}' in {folder}")
+    return path if path.is_file() else None
+
+
+def _limits(node: Node) -> Limits:
+    fields = node.as_fields("limits", LIMIT_KEYS, "limits: {wall_s: 60, memory_mb: 1024}")
+    values = {}
+    for key in LIMIT_KEYS:
+        if key in fields:
+            value = fields.number(key, example=f"{key}: 10")
+            if value <= 0:
+                raise fields.get(key).error(f"'{key}' must be more than 0, got {value:g}")
+            values[key] = value
+    return Limits(**values)
+
+
+def _lesson_check_kinds(folder: Path, lesson_path: Path) -> dict[str, type[Check]]:
+    """The check kinds defined in the lesson's check_*.py files (Check subclasses with a KIND)."""
+    builtins = builtin_checks()
+    kinds: dict[str, type[Check]] = {}
+    for path in sorted(folder.glob("check_*.py")):
+        module_name = f"ev3sim2d_lesson_{folder.name.replace('-', '_')}_{path.stem}"
+        spec = importlib.util.spec_from_file_location(module_name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[module_name] = module
+        try:
+            spec.loader.exec_module(module)
+        except Exception as exc:
+            raise WorldFileError(
+                str(path), None, None, f"cannot load this check file: {type(exc).__name__}: {exc}"
+            ) from exc
+        for _, cls in inspect.getmembers(module, inspect.isclass):
+            if issubclass(cls, Check) and cls.KIND and cls.__module__ == module_name:
+                if cls.KIND in builtins:
+                    raise WorldFileError(
+                        str(path),
+                        None,
+                        None,
+                        f"check kind '{cls.KIND}' is a built-in kind; give yours another KIND",
+                    )
+                kinds[cls.KIND] = cls
+    return kinds

@@ -1,0 +1,145 @@
+"""Grading results as plain data: per check, per variant, per submission; to and from JSON.
+
+Statuses of a variant and a submission:
+- `graded`: the program ran to its end or to the time limit; the checks say the rest;
+- `error`: the program raised an exception (or could not be started: a syntax error);
+- `timeout`: it got stuck (a loop that never uses the robot or the clock) or ran past the wall/CPU limit;
+- `memory`: it ran out of the memory it may use;
+- `output`: it wrote more to the console than it may;
+- `crashed`: the Python interpreter running it died (a segmentation fault, a signal);
+- `missing`: no program to run was found.
+A submission's status is the worst of its variants' (in the order crashed, memory, output, timeout, error, missing).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+STATUS_ORDER = ("crashed", "memory", "output", "timeout", "error", "missing", "graded")
+
+
+@dataclass
+class CheckResult:
+    """One check in one variant."""
+
+    name: str
+    kind: str
+    passed: bool
+    points: float  # what it earned
+    max_points: float
+    message: str
+    t_s: float | None = None
+
+
+@dataclass
+class VariantResult:
+    """One submission in one variant: how the run went and what each check found."""
+
+    name: str
+    hidden: bool
+    status: str
+    message: str  # how the run ended, one line
+    sim_time_s: float | None
+    checks: list[CheckResult] = field(default_factory=list)
+
+    @property
+    def score(self) -> float:
+        return sum(c.points for c in self.checks)
+
+    @property
+    def max_score(self) -> float:
+        return sum(c.max_points for c in self.checks)
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.checks)
+
+    def failed_checks(self) -> list[CheckResult]:
+        return [c for c in self.checks if not c.passed]
+
+    def to_dict(self) -> dict:
+        data = asdict(self)
+        data["score"] = _number(self.score)
+        data["max_score"] = _number(self.max_score)
+        for check in data["checks"]:
+            check["points"] = _number(check["points"])
+            check["max_points"] = _number(check["max_points"])
+        return data
+
+    @classmethod
+    def from_dict(cls, data: dict) -> VariantResult:
+        checks = [CheckResult(**c) for c in data.get("checks", [])]
+        keys = ("name", "hidden", "status", "message", "sim_time_s")
+        return cls(**{k: data.get(k) for k in keys}, checks=checks)
+
+
+@dataclass
+class SubmissionResult:
+    """A submission graded in every variant of a lesson."""
+
+    submission: str
+    key: str
+    variants: list[VariantResult] = field(default_factory=list)
+    problem: str | None = None  # set when there was nothing to run
+    max_points: float = 0.0  # used when there are no variant results (nothing to run)
+
+    @property
+    def score(self) -> float:
+        return sum(v.score for v in self.variants)
+
+    @property
+    def max_score(self) -> float:
+        return sum(v.max_score for v in self.variants) if self.variants else self.max_points
+
+    @property
+    def status(self) -> str:
+        if self.problem is not None:
+            return "missing"
+        statuses = {v.status for v in self.variants}
+        return next((s for s in STATUS_ORDER if s in statuses), "graded")
+
+    @property
+    def full_marks(self) -> bool:
+        return self.max_score > 0 and abs(self.score - self.max_score) < 1e-9
+
+    def first_failure(self) -> str:
+        """The first thing that went wrong, as one line for the table."""
+        line = ""
+        if self.problem:
+            line = self.problem
+        else:
+            for variant in self.variants:
+                failed = variant.failed_checks()
+                if variant.status != "graded":
+                    line = f"{variant.name}: {variant.message}"
+                elif failed:
+                    line = f"{variant.name}: {failed[0].name}: {failed[0].message}"
+                if line:
+                    break
+        return " ".join(line.split())
+
+    def to_dict(self) -> dict:
+        return {
+            "submission": self.submission,
+            "key": self.key,
+            "score": _number(self.score),
+            "max_score": _number(self.max_score),
+            "status": self.status,
+            "problem": self.problem,
+            "variants": [v.to_dict() for v in self.variants],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> SubmissionResult:
+        return cls(
+            submission=data["submission"],
+            key=data.get("key", ""),
+            variants=[VariantResult.from_dict(v) for v in data.get("variants", [])],
+            problem=data.get("problem"),
+            max_points=float(data.get("max_score", 0.0)),
+        )
+
+
+def _number(value: float) -> float | int:
+    """Whole numbers as ints in JSON (5, not 5.0)."""
+    return int(value) if float(value).is_integer() else round(float(value), 3)

@@ -1,0 +1,153 @@
+"""One variant of a lesson: the world a program is graded in, with its start, robot, sensor noise and seed.
+
+Variants keep a program honest: another start pose, a mirrored or different
+maze, noisy sensors with another seed.  A `hidden: true` variant is graded like
+the others but left out of what students read about the lesson.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..world.maze_file import load_maze, shipped_mazes_dir
+from ..world.pose import Pose
+from ..world.robot_spec import SENSOR_KINDS, RobotSpec, find_robot, load_robot, shipped_robot_names
+from ..world.world import World
+from ..world.yaml_source import Fields, Node
+
+VARIANT_KEYS = ("name", "world", "description", "hidden", "start", "robot", "noise", "seed", "time_s")
+VARIANT_EXAMPLE = "- {name: mirrored, world: maze-mirrored.yaml, hidden: true}"
+START_EXAMPLE = "start: {x_cm: 60, y_cm: 40, heading_deg: 90}"
+
+
+@dataclass
+class Variant:
+    """A world (file), optionally with another start, robot, sensor noise, seed and time limit."""
+
+    name: str
+    world_path: Path
+    time_s: float
+    seed: int = 0
+    hidden: bool = False
+    description: str = ""
+    start: Pose | None = None
+    robot: RobotSpec | None = None  # None: the world's own robot
+    noise: dict[str, float] = field(default_factory=dict)
+    _world: World | None = field(default=None, repr=False)
+
+    def world(self) -> World:
+        """The world to run in, with this variant's start, robot and noise (read once)."""
+        if self._world is None:
+            world = load_maze(self.world_path)
+            robot = self.robot or world.robot
+            if self.noise:
+                robot = with_noise(robot, self.noise)
+            starts = ([self.start] + list(world.starts[1:])) if self.start is not None else world.starts
+            self._world = dataclasses.replace(world, robot=robot, starts=starts)
+        return self._world
+
+
+def with_noise(robot: RobotSpec, noise: dict[str, float]) -> RobotSpec:
+    """The robot with the given noise (standard deviation by sensor kind) on its sensors of those kinds."""
+    sensors = tuple(
+        dataclasses.replace(s, noise=noise[s.kind]) if s.kind in noise else s for s in robot.sensors
+    )
+    return dataclasses.replace(robot, sensors=sensors)
+
+
+def find_world_file(value: str, lesson_dir: Path) -> Path | None:
+    """A world file in the lesson's folder (with or without .yaml), else a shipped maze by name."""
+    candidate = Path(value)
+    places = [lesson_dir / candidate, lesson_dir / f"{value}.yaml"]
+    stem = candidate.stem if candidate.suffix in (".yaml", ".yml") else candidate.name
+    places.append(shipped_mazes_dir() / f"{stem}.yaml")
+    return next((p for p in places if p.is_file()), None)
+
+
+def read_robot(node: Node, lesson_dir: Path) -> RobotSpec:
+    """`robot: FILE` (in the lesson folder) or the name of a shipped robot."""
+    value = node.as_text("robot", "robot: ev3-driving-base").strip()
+    path = find_robot(value, lesson_dir)
+    if path is None:
+        raise node.error(
+            f"no robot file '{value}' in {lesson_dir} and no shipped robot by that name; "
+            f"shipped robots: {', '.join(shipped_robot_names())}"
+        )
+    return load_robot(path)
+
+
+def read_noise(node: Node) -> dict[str, float]:
+    """`noise: {color: 2, ultrasonic: 1}`: standard deviation by sensor kind, in the sensor's unit."""
+    fields = node.as_fields("noise", SENSOR_KINDS, "noise: {color: 2}")
+    noise = {}
+    for kind in fields:
+        value = fields.number(kind, unit="the sensor's own unit", example=f"{kind}: 2")
+        if value < 0:
+            raise fields.get(kind).error(
+                f"noise is a standard deviation and cannot be negative, got {value:g}"
+            )
+        noise[kind] = value
+    return noise
+
+
+def read_start(node: Node, world: World) -> Pose:
+    """A start pose (`{x_cm, y_cm, heading_deg}` or `{cell: [col, row], heading_deg}`) on the world's floor."""
+    fields = node.as_fields("start", ("cell", "x_cm", "y_cm", "heading_deg"), START_EXAMPLE)
+    heading = fields.number("heading_deg", default=0.0, unit="degrees", example="heading_deg: 90")
+    grid = world.grid
+    if "cell" in fields:
+        if "x_cm" in fields or "y_cm" in fields:
+            raise node.error("give the start either as `cell: [col, row]` or as `x_cm` and `y_cm`, not both")
+        col, row = (int(v) for v in fields.get("cell").as_numbers("cell", 2, example="cell: [1, 1]"))
+        if not grid.contains(col, row) or grid.is_wall(col, row):
+            raise fields.get("cell").error(f"start cell [{col}, {row}] is not a floor cell of {world.source}")
+        x, y = grid.cell_center(col, row)
+        return Pose(x, y, heading)
+    x = fields.number("x_cm", unit="cm", example="x_cm: 60")
+    y = fields.number("y_cm", unit="cm", example="y_cm: 40")
+    index = grid.cell_index_at(x, y)
+    if index is None or grid.is_wall(*index):
+        raise node.error(f"start x_cm {x:g}, y_cm {y:g} is not on the floor of {world.source}", column=False)
+    return Pose(x, y, heading)
+
+
+def variant_from_node(
+    node: Node, lesson_dir: Path, default_time_s: float, default_seed: int, default_robot: RobotSpec | None
+) -> tuple[Variant, Fields]:
+    """One entry of `variants:`; the world, start and robot are read (and checked) now."""
+    if not node.is_mapping:
+        raise node.error(f"each variant is a mapping like `{VARIANT_EXAMPLE}`, got {node.describe()}")
+    fields = node.as_fields("variant", VARIANT_KEYS, VARIANT_EXAMPLE)
+    name = fields.text("name", example="name: mirrored").strip()
+    if not name or any(c in name for c in "/\\ "):
+        raise fields.get("name").error(
+            f"a variant name is one word without '/', got {name!r}; e.g. `name: mirrored`"
+        )
+    world_node = fields.require("world", "world: maze.yaml")
+    world_value = world_node.as_text("world", "world: maze.yaml").strip()
+    world_path = find_world_file(world_value, lesson_dir)
+    if world_path is None:
+        raise world_node.error(
+            f"no world file '{world_value}' in {lesson_dir} and no shipped maze by that name; "
+            "give a .yaml file in the lesson's folder or a shipped maze (ev3sim2d mazes)"
+        )
+    time_s = fields.number("time_s", default=default_time_s, unit="simulated seconds", example="time_s: 60")
+    if time_s <= 0:
+        raise fields.get("time_s").error(f"'time_s' must be more than 0, got {time_s:g}")
+    robot = read_robot(fields.get("robot"), lesson_dir) if "robot" in fields else default_robot
+    variant = Variant(
+        name=name,
+        world_path=world_path,
+        time_s=time_s,
+        seed=fields.integer("seed", default=default_seed, example="seed: 1"),
+        hidden=fields.boolean("hidden", default=False),
+        description=fields.text("description", default="").strip(),
+        robot=robot,
+        noise=read_noise(fields.get("noise")) if "noise" in fields else {},
+    )
+    world = load_maze(world_path)  # WorldFileError names the world file and its line
+    if "start" in fields:
+        variant.start = read_start(fields.get("start"), world)
+    return variant, fields

@@ -1,0 +1,439 @@
+"""One student's program in one variant, run and scored in a process of its own that nothing it does can escape.
+
+The parent (`grader.py`) starts a worker per submission and variant: forked
+from the grader where the system can fork (fast: the lesson and its worlds are
+already loaded), else a fresh `python -m ev3sim2d.grading.worker JOB.json`.  The worker
+- gets a process group of its own (so the parent can end it and anything it starts),
+- sends the console (fds 1 and 2) to a file in its job folder and runs in an empty folder,
+- limits itself: CPU time (SIGXCPU), address space (MemoryError), size of files it
+  writes (SIGXFSZ: output that never ends), no core dumps,
+- runs `run_programs`, scores the run with the lesson's checks (which read only the
+  trace and the world), and writes `result.json` (the variant's result), and, when the
+  parent asks for failed runs' traces, `trace.npz`; then ends with os._exit.
+The parent kills the group at the wall-clock limit, and reads whatever is left:
+`collect()` turns it into a `JobOutcome` (the variant's result, or why there is none).
+"""
+
+from __future__ import annotations
+
+import faulthandler
+import io
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import traceback
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+from .result import VariantResult
+
+RESULT_FILE = "result.json"
+TRACE_FILE = "trace.npz"
+CONSOLE_FILE = "console.log"
+EXIT_MEMORY = 3
+EXIT_INTERNAL = 4
+EXIT_CHECK_ERROR = 5
+KEEP_CONSOLE_BYTES = 2000
+
+SIGNAL_NAMES = {
+    "SIGSEGV": "a segmentation fault",
+    "SIGABRT": "an abort",
+    "SIGBUS": "a bus error",
+    "SIGILL": "an illegal instruction",
+    "SIGFPE": "a floating point exception",
+    "SIGKILL": "SIGKILL",
+    "SIGTERM": "SIGTERM",
+}
+
+
+@dataclass
+class Job:
+    """One submission in one variant: what to run, where, and within which limits."""
+
+    submission: int
+    variant: int
+    entry: str
+    folder: str  # the job's own folder: result, trace, console
+    lesson: str  # the lesson folder (a spawned worker reads the lesson again)
+    variant_name: str
+    time_s: float
+    seed: int
+    hang_s: float
+    wall_s: float
+    cpu_s: float
+    memory_mb: float
+    output_mb: float
+    keep_trace: bool = False  # write trace.npz when a check fails
+
+
+@dataclass
+class JobOutcome:
+    """What a worker left: the variant's result (`ran`), or why there is none (timeout, memory, output,
+    crashed, error: the program could not be started)."""
+
+    outcome: str  # ran, error, timeout, memory, output, crashed
+    message: str
+    variant: VariantResult | None = None
+    trace_path: Path | None = None  # the run's trace, when kept
+    wall_s: float = 0.0
+
+
+class CheckError(RuntimeError):
+    """A check raised an exception while scoring a run: a bug in the check (or in a lesson's check_*.py)."""
+
+
+# -- the child side -------------------------------------------------------------------------
+
+
+def _limit(which: int, soft: int, hard: int | None = None) -> None:
+    import resource
+
+    hard = soft if hard is None else hard
+    try:
+        _, current_hard = resource.getrlimit(which)
+        if current_hard != resource.RLIM_INFINITY:
+            soft, hard = min(soft, current_hard), min(hard, current_hard)
+        resource.setrlimit(which, (soft, hard))
+    except (ValueError, OSError):
+        pass  # a limit the system will not set: the parent's wall-clock limit still holds
+
+
+def _address_space_now() -> int | None:
+    """This process's virtual memory size in bytes (Linux), None elsewhere."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmSize:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        return None
+    return None
+
+
+def _set_limits(job: Job) -> None:
+    try:
+        import resource
+    except ImportError:  # Windows: only the parent's wall-clock limit
+        return
+    # Python ignores SIGXFSZ; a program that writes too much should end, not loop on write errors
+    if hasattr(signal, "SIGXFSZ"):
+        signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
+    cpu = max(1, int(job.cpu_s))
+    _limit(resource.RLIMIT_CPU, cpu, cpu + 2)
+    _limit(resource.RLIMIT_FSIZE, int(job.output_mb * 2**20))
+    _limit(resource.RLIMIT_CORE, 0)
+    now = _address_space_now()
+    if now is not None:
+        _limit(resource.RLIMIT_AS, now + int(job.memory_mb * 2**20))
+
+
+def _redirect_console(folder: Path) -> None:
+    """fds 1 and 2 (and so anything written to them, by Python or not) into the job's console file."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    fd = os.open(folder / CONSOLE_FILE, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    os.dup2(fd, 1)
+    os.dup2(fd, 2)
+    os.close(fd)
+    null = os.open(os.devnull, os.O_RDONLY)
+    os.dup2(null, 0)
+    os.close(null)
+    # the streams Python writes to may not be fds 1 and 2 (a test runner's capture): make them so
+    sys.stdout = io.TextIOWrapper(os.fdopen(1, "wb", closefd=False), "utf-8", "replace", line_buffering=True)
+    sys.stderr = io.TextIOWrapper(
+        os.fdopen(2, "wb", closefd=False), "utf-8", "backslashreplace", line_buffering=True
+    )
+    faulthandler.enable(file=sys.stderr)  # a crash's traceback goes to the console file too
+
+
+def _driving(robot) -> bool:
+    """Whether a robot's wheel motors were still being driven when the run ended."""
+    for motor in (robot.left, robot.right):
+        if motor.mode not in ("stopped", "coast") and abs(motor.plan(0.01)) > 1e-6:
+            return True
+    return False
+
+
+@contextmanager
+def _noting_end_motors(into: list[dict]):
+    """Note, as the run finishes, whether each robot's wheels were still being driven.
+
+    The trace's last row is the last tick, which may come before the program's last motor
+    command (a `tank.off()` just before the program ends), and run_programs frees the
+    robots; so the worker looks at them when the simulation finishes.  Only in the worker.
+    """
+    from ..simulation import Simulation
+
+    original = Simulation.finish
+
+    def finish(sim):
+        into[:] = [{"driving": _driving(robot)} for robot in sim.robots]
+        return original(sim)
+
+    Simulation.finish = finish
+    try:
+        yield
+    finally:
+        Simulation.finish = original
+
+
+def _write_json(path: Path, data: dict) -> None:
+    part = path.with_suffix(".part")
+    part.write_text(json.dumps(data, default=str), encoding="utf-8")
+    os.replace(part, path)
+
+
+def run_job(job: Job, lesson) -> None:
+    """The worker's whole life (in the child process): limits, run, score, files, exit.  Never returns."""
+    code = 0
+    folder = Path(job.folder)
+    try:
+        _redirect_console(folder)
+        sandbox = folder / "cwd"
+        sandbox.mkdir(exist_ok=True)
+        os.chdir(sandbox)
+        _set_limits(job)
+        code = _run_and_score(job, lesson, folder)
+    except MemoryError:
+        code = EXIT_MEMORY
+    except BaseException:  # noqa: BLE001 - whatever it is, the parent reads it from the console file
+        try:
+            traceback.print_exc()
+        except BaseException:  # noqa: BLE001
+            pass
+        code = EXIT_INTERNAL
+    finally:
+        try:
+            sys.stdout.flush()
+            sys.stderr.flush()
+        except BaseException:  # noqa: BLE001
+            pass
+        os._exit(code)
+
+
+def _run_and_score(job: Job, lesson, folder: Path) -> int:
+    from ..program import ProgramError
+    from ..run import run_programs
+    from .run_record import RunRecord
+    from .scoring import score_run
+
+    variant = lesson.variants[job.variant]
+    world = variant.world()
+    end_motors: list[dict] = []
+    try:
+        with _noting_end_motors(end_motors):
+            result = run_programs([job.entry], world, None, job.time_s, job.seed, job.hang_s, echo=None)
+    except ProgramError as err:
+        _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})
+        return 0
+    out_of_memory = result.error is not None and result.error.get("type") == "MemoryError"
+    record = RunRecord(result.trace, world, variant.time_s, end_motors)
+    try:
+        scored = score_run(lesson, job.variant, record, out_of_memory)
+    except Exception:  # noqa: BLE001 - a check's bug, not the program's: the parent says so loudly
+        traceback.print_exc()
+        return EXIT_CHECK_ERROR
+    kept = job.keep_trace and not scored.passed
+    if kept:
+        result.trace.save(folder / TRACE_FILE)
+    outcome = "memory" if out_of_memory else "ran"
+    _write_json(
+        folder / RESULT_FILE,
+        {"outcome": outcome, "variant": scored.to_dict(), "trace": kept, "wall_time_s": result.wall_time_s},
+    )
+    return 0
+
+
+# -- the parent side ------------------------------------------------------------------------
+
+
+class RunningJob:
+    """A worker process the parent watches: poll it, kill it at its deadline."""
+
+    def __init__(self, job: Job, pid: int | None = None, popen: subprocess.Popen | None = None) -> None:
+        self.job = job
+        self.pid = pid if pid is not None else popen.pid
+        self.popen = popen
+        self.started = time.monotonic()
+        self.deadline = self.started + job.wall_s
+        self.killed_for: str | None = None
+        self.returncode: int | None = None
+
+    def poll(self) -> bool:
+        """Whether the worker has ended (reaping it, and ending anything it left behind)."""
+        if self.returncode is not None:
+            return True
+        if self.popen is not None:
+            code = self.popen.poll()
+            if code is None:
+                return False
+            self._end_group()
+            self.returncode = code
+            return True
+        if hasattr(os, "waitid"):
+            # look without reaping first: while the child is a zombie its group id cannot be reused
+            if os.waitid(os.P_PID, self.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is None:
+                return False
+            self._end_group()
+            _, status = os.waitpid(self.pid, 0)
+        else:
+            pid, status = os.waitpid(self.pid, os.WNOHANG)
+            if pid == 0:
+                return False
+            self._end_group()
+        self.returncode = os.waitstatus_to_exitcode(status)
+        return True
+
+    def kill(self, reason: str) -> None:
+        """End the worker and its process group now (at the wall-clock limit, or when grading stops)."""
+        if self.killed_for is None:
+            self.killed_for = reason
+        self._end_group()
+        try:
+            if self.popen is not None:
+                self.popen.kill()
+            else:
+                os.kill(self.pid, signal.SIGKILL)
+        except (ProcessLookupError, OSError):
+            pass
+
+    def reap(self, timeout_s: float = 2.0) -> None:
+        """Wait (briefly) for a killed worker to be gone, so it leaves no zombie behind."""
+        end = time.monotonic() + timeout_s
+        while not self.poll() and time.monotonic() < end:
+            time.sleep(0.01)
+
+    def _end_group(self) -> None:
+        if hasattr(os, "killpg"):
+            try:
+                os.killpg(self.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError, OSError):
+                pass
+
+
+def start_job(job: Job, lesson, use_fork: bool) -> RunningJob:
+    """Start a worker for the job; with use_fork, the child runs `run_job(job, lesson)` straight away."""
+    Path(job.folder).mkdir(parents=True, exist_ok=True)
+    if use_fork:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:  # the child
+            try:
+                os.setpgid(0, 0)
+            except OSError:
+                pass
+            run_job(job, lesson)
+        try:
+            os.setpgid(pid, pid)  # also from here, so a kill can never miss the group
+        except OSError:
+            pass
+        return RunningJob(job, pid=pid)
+    job_file = Path(job.folder) / "job.json"
+    job_file.write_text(json.dumps(asdict(job)), encoding="utf-8")
+    options: dict = {"stdin": subprocess.DEVNULL, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
+    if os.name == "posix":
+        options["start_new_session"] = True
+    else:
+        options["creationflags"] = getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0)
+    popen = subprocess.Popen([sys.executable, "-m", "ev3sim2d.grading.worker", str(job_file)], **options)
+    return RunningJob(job, popen=popen)
+
+
+def _console_tail(folder: Path) -> str:
+    try:
+        with open(folder / CONSOLE_FILE, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            f.seek(max(0, size - KEEP_CONSOLE_BYTES))
+            return f.read().decode("utf-8", "replace").strip()
+    except OSError:
+        return ""
+
+
+def _signal_name(number: int) -> str:
+    try:
+        return signal.Signals(number).name
+    except ValueError:
+        return f"signal {number}"
+
+
+def collect(running: RunningJob) -> JobOutcome:
+    """What the ended worker left, as a JobOutcome."""
+    job = running.job
+    folder = Path(job.folder)
+    wall = time.monotonic() - running.started
+    if running.killed_for is not None and running.killed_for != "wall":
+        return JobOutcome("crashed", f"the run was stopped: {running.killed_for}", wall_s=wall)
+    result_path = folder / RESULT_FILE  # written last: if it is there, the run completed
+    if result_path.is_file():
+        try:
+            info = json.loads(result_path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            info = None
+        if isinstance(info, dict) and info.get("outcome") == "error":
+            return JobOutcome("error", str(info.get("message", "")), wall_s=wall)
+        if isinstance(info, dict) and info.get("outcome") in ("ran", "memory"):
+            try:
+                variant = VariantResult.from_dict(info["variant"])
+            except (KeyError, TypeError) as err:
+                return JobOutcome("crashed", f"the run left an unreadable result ({err})", wall_s=wall)
+            trace = folder / TRACE_FILE if info.get("trace") else None
+            return JobOutcome(info["outcome"], variant.message, variant, trace, wall)
+    if running.killed_for == "wall":
+        return JobOutcome(
+            "timeout",
+            f"the program ran longer than the limit of {job.wall_s:g} s of real time, so it was stopped "
+            "(is it computing a lot between two uses of the robot?)",
+            wall_s=wall,
+        )
+    code = running.returncode if running.returncode is not None else 0
+    tail = _console_tail(folder)
+    if code == EXIT_CHECK_ERROR:
+        raise CheckError(f"a check failed while scoring {job.entry} in variant {job.variant_name}:\n{tail}")
+    if code < 0:
+        name = _signal_name(-code)
+        if name == "SIGXCPU":
+            return JobOutcome(
+                "timeout",
+                f"the program used more than {job.cpu_s:g} s of CPU time, so it was stopped",
+                wall_s=wall,
+            )
+        if name == "SIGXFSZ":
+            return JobOutcome(
+                "output",
+                f"the program wrote more than {job.output_mb:g} MB to the console, so it was stopped "
+                "(output that never ends?)",
+                wall_s=wall,
+            )
+        what = SIGNAL_NAMES.get(name, name)
+        return JobOutcome(
+            "crashed", f"the Python interpreter running the program crashed ({what}, {name})", wall_s=wall
+        )
+    if code == EXIT_MEMORY or "MemoryError" in tail:
+        return JobOutcome(
+            "memory", f"the program used more memory than the {job.memory_mb:g} MB it may use", wall_s=wall
+        )
+    last = tail.splitlines()[-1] if tail else "no message"
+    return JobOutcome("crashed", f"the run ended without a result (exit status {code}: {last})", wall_s=wall)
+
+
+# -- a spawned worker (systems without fork) ------------------------------------------------
+
+
+def main(argv: list[str]) -> None:
+    job = Job(**json.loads(Path(argv[0]).read_text(encoding="utf-8")))
+    from .lesson import load_lesson
+
+    run_job(job, load_lesson(job.lesson))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

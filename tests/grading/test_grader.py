@@ -1,0 +1,116 @@
+"""Grading a class: results as they come, resuming, the same score every time, either way of starting workers."""
+
+import json
+import os
+
+import pytest
+
+from ev3sim2d.grading.grader import grade, load_results
+from ev3sim2d.grading.lesson import load_lesson
+from ev3sim2d.grading.submission import find_submissions
+
+from .lesson_maker import GOOD, SHORT, write_lesson, write_program
+
+
+@pytest.fixture
+def lesson(tmp_path):
+    return load_lesson(write_lesson(tmp_path / "lesson"))
+
+
+@pytest.fixture
+def programs(tmp_path):
+    folder = tmp_path / "class"
+    write_program(folder, "alice.py", GOOD)
+    write_program(folder, "bob.py", SHORT)
+    write_program(folder, "carol.py", "raise ValueError('oops')\n")
+    return folder
+
+
+def test_results_are_written_as_each_submission_finishes(lesson, programs, tmp_path):
+    results_file = tmp_path / "results.json"
+    seen = []
+
+    def on_result(result):
+        saved = json.loads(results_file.read_text())
+        seen.append((result.submission, [s["submission"] for s in saved["submissions"]]))
+
+    grading = grade(
+        lesson, find_submissions([programs]), jobs=2, results_path=results_file, on_result=on_result
+    )
+    assert [name for name, _ in seen] == [r.submission for r in grading.results]
+    for name, saved in seen:
+        assert name in saved  # already in the file when the callback heard of it
+    assert [len(saved) for _, saved in seen] == [1, 2, 3]
+    data = json.loads(results_file.read_text())
+    assert data["lesson"] == "lesson" and data["max_score"] == 10
+    carol = data["submissions"][2]
+    assert carol["status"] == "error" and carol["score"] == 0
+    assert "ValueError: oops (line 1)" in carol["variants"][0]["message"]
+
+
+def test_an_interrupted_run_resumes_without_grading_again(lesson, programs, tmp_path):
+    results_file = tmp_path / "results.json"
+    first = grade(lesson, find_submissions([programs / "alice.py"]), results_path=results_file)
+    assert first.reused == 0
+    second = grade(lesson, find_submissions([programs]), jobs=2, results_path=results_file)
+    assert second.reused == 1
+    assert [r.submission.split("/")[-1] for r in second.results] == ["alice.py", "bob.py", "carol.py"]
+    assert second.results[0].full_marks
+    (programs / "alice.py").write_text(SHORT)  # changed since: graded again
+    third = grade(lesson, find_submissions([programs]), jobs=2, results_path=results_file)
+    assert third.reused == 2 and not third.results[0].full_marks
+    assert grade(lesson, find_submissions([programs]), results_path=results_file, regrade=True).reused == 0
+
+
+def test_results_of_another_lesson_are_not_reused(lesson, programs, tmp_path):
+    results_file = tmp_path / "results.json"
+    grade(lesson, find_submissions([programs / "alice.py"]), results_path=results_file)
+    data = json.loads(results_file.read_text())
+    data["lesson"] = "another"
+    results_file.write_text(json.dumps(data))
+    assert load_results(results_file, lesson) == {}
+
+
+def test_the_same_submission_always_gets_the_same_result(lesson, programs):
+    runs = [grade(lesson, find_submissions([programs]), jobs=jobs).results for jobs in (1, 2, 2)]
+    as_json = [[r.to_dict() for r in results] for results in runs]
+    assert as_json[0] == as_json[1] == as_json[2]
+
+
+def test_nothing_to_run_is_a_result_too(lesson, tmp_path):
+    [result] = grade(lesson, find_submissions([tmp_path / "nobody.py"])).results
+    assert result.status == "missing" and result.score == 0 and result.max_score == 10
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="compares with forked workers")
+def test_spawned_workers_grade_as_forked_ones_do(lesson, programs):
+    subs = find_submissions([programs / "alice.py", programs / "bob.py"])
+    forked = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=True).results]
+    spawned = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=False).results]
+    assert forked == spawned
+
+
+def test_failed_runs_are_handed_on_with_their_trace(lesson, programs):
+    kept = []
+
+    def on_failed_run(submission, variant, trace_path):
+        kept.append((submission.name.split("/")[-1], variant, trace_path.is_file()))
+
+    grade(lesson, find_submissions([programs / "alice.py", programs / "bob.py"]), on_failed_run=on_failed_run)
+    assert sorted(kept) == [("bob.py", 0, True), ("bob.py", 1, True)]
+
+
+def test_an_interrupt_keeps_what_is_done_and_leaves_no_worker_behind(lesson, programs, tmp_path):
+    results_file = tmp_path / "results.json"
+
+    def interrupt(result):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        grade(lesson, find_submissions([programs]), jobs=2, results_path=results_file, on_result=interrupt)
+    saved = json.loads(results_file.read_text())["submissions"]
+    assert [s["submission"].split("/")[-1] for s in saved] == ["alice.py"]
+    with pytest.raises(ChildProcessError):
+        os.waitpid(-1, os.WNOHANG)  # no child process left, not even a zombie
+    resumed = grade(lesson, find_submissions([programs]), jobs=2, results_path=results_file)
+    assert resumed.reused == 1 and len(resumed.results) == 3

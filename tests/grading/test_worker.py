@@ -1,0 +1,88 @@
+"""Programs that misbehave each get a clear result, and never disturb the grading of the others.
+
+All of them are graded in one class run, two at a time, next to good programs."""
+
+import sys
+
+import pytest
+
+from ev3sim2d.grading.grader import grade
+from ev3sim2d.grading.lesson import load_lesson
+from ev3sim2d.grading.submission import find_submissions
+
+from .lesson_maker import GOOD, SHORT, write_lesson, write_program
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="the limits need a POSIX system")
+
+MISBEHAVING = {
+    "loops_for_ever.py": ("timeout", "got stuck", "while True:\n    pass\n"),
+    "memory_blow_up.py": (
+        "memory",
+        "ran out of memory",
+        "x = []\nwhile True:\n    x.append(bytearray(10**7))\n",
+    ),
+    "calls_sys_exit.py": ("error", "SystemExit: 3", "import sys\nsys.exit(3)\n"),
+    "crashes_python.py": ("crashed", "segmentation fault", "import ctypes\nctypes.string_at(0)\n"),
+    "endless_output.py": (
+        "output",
+        "more than 1 MB",
+        "import os\nwhile True:\n    os.write(1, b'x' * 65536)\n",
+    ),
+    "kills_itself.py": ("crashed", "SIGKILL", "import os, signal\nos.kill(os.getpid(), signal.SIGKILL)\n"),
+    "syntax_error.py": ("error", "invalid syntax", "def f(:\n"),
+    "slow_computing.py": (
+        "timeout",
+        "longer than the limit of 5 s of real time",
+        "import time\nwhile True:\n    sum(range(3 * 10**6))\n    time.sleep(0.001)\n",
+    ),
+}
+
+
+@pytest.fixture(scope="module")
+def class_run(tmp_path_factory):
+    root = tmp_path_factory.mktemp("misbehaving")
+    lesson = load_lesson(
+        write_lesson(root / "lesson", extra="limits: {wall_s: 5, hang_s: 2, output_mb: 1, memory_mb: 128}")
+    )
+    programs = root / "class"
+    write_program(programs, "a_good.py", GOOD)
+    for name, (_, _, source) in MISBEHAVING.items():
+        write_program(programs, name, source)
+    write_program(programs, "os_exit.py", GOOD + "import os\nos._exit(0)\n")
+    write_program(programs, "z_short.py", SHORT)
+    results = grade(lesson, find_submissions([programs]), jobs=2).results
+    return {r.submission.split("/")[-1]: r for r in results}
+
+
+def test_good_programs_around_them_are_graded_correctly(class_run):
+    good = class_run["a_good.py"]
+    assert good.status == "graded" and good.full_marks
+    short = class_run["z_short.py"]
+    assert (
+        short.status == "graded" and short.score == 2 and short.max_score == 10
+    )  # finished, in both variants
+
+
+def test_os_exit_ends_only_the_program(class_run):
+    result = class_run["os_exit.py"]
+    assert result.status == "graded" and result.full_marks
+
+
+@pytest.mark.parametrize("name", sorted(MISBEHAVING))
+def test_each_misbehaving_program_gets_its_own_clear_result(class_run, name):
+    status, words, _ = MISBEHAVING[name]
+    result = class_run[name]
+    assert result.status == status, result.first_failure()
+    assert all(v.status == status for v in result.variants), [(v.status, v.message) for v in result.variants]
+    assert words in result.variants[0].message, result.variants[0].message
+    assert result.score < result.max_score
+
+
+def test_a_cpu_hog_is_stopped_by_the_cpu_limit(tmp_path):
+    lesson = load_lesson(
+        write_lesson(tmp_path / "lesson", extra="limits: {wall_s: 30, cpu_s: 1, hang_s: 20}")
+    )
+    hog = write_program(tmp_path, "hog.py", "while True:\n    pass\n")
+    result = grade(lesson, find_submissions([hog]), jobs=2).results[0]
+    assert result.status == "timeout"
+    assert "CPU time" in result.variants[0].message
