@@ -121,6 +121,10 @@ class Simulation:
         ]
         samples.sort(key=lambda s: (s[0], s[1], s[2]))
         self.trace.sensor_samples = samples
+        # the last tick may come before the program's last commands (a tank.off() just before it ends)
+        self.trace.end_motors = [
+            {"driving": robot.driving(), "states": self.motor_states(robot)} for robot in self.robots
+        ]
         return self.trace
 
     def tick(self, now_us: int) -> None:

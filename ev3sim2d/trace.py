@@ -56,6 +56,8 @@ class Trace:
     events: list[list] = field(default_factory=list)
     lcd_frames: list[bytes] = field(default_factory=list)  # 178 x 128 bytes of 8-bit grey, row by row
     result: dict = field(default_factory=dict)  # status, error, ... filled in at the end
+    # per robot, the motors as the run ended: {"driving": wheels still driven, "states": {port: state}}
+    end_motors: list[dict] = field(default_factory=list)
 
     # ------------------------------------------------------------ recording
     @property
@@ -125,6 +127,7 @@ class Trace:
             "output": [o.__dict__ for o in self.output],
             "events": self.events,
             "result": self.result,
+            "end_motors": self.end_motors,
         }
         with open(path, "wb") as f:
             np.savez_compressed(
@@ -149,4 +152,5 @@ class Trace:
         trace.output = [OutputLine(**o) for o in meta["output"]]
         trace.events = meta["events"]
         trace.result = meta["result"]
+        trace.end_motors = meta.get("end_motors", [])
         return trace

@@ -126,3 +126,20 @@ def test_nxt_light_and_sound_sensors_work_where_the_robot_has_them(run, tmp_path
     lines = [o.text for o in result.trace.output]
     assert lines[0] == f"{(20 + 0.55 * 5):.1f} 5.0"  # on the black line; a quiet room
     assert lines[1] == "60.0"  # its own speaker
+
+
+def test_noise_leaves_values_that_name_something_alone(tmp_path):
+    from ev3sim2d.world.robot_spec import default_robot
+
+    source = open(default_robot().source).read().replace("spot_cm: 1.5}", "spot_cm: 1.5, noise: 20}")
+    robot = tmp_path / "noisy.yaml"
+    robot.write_text(source)
+    world = arena(inner=STRIPE, start="x_cm: 59\n  y_cm: 120\n  heading_deg: 0", extra=f"robot: {robot}\n")
+    sim = Simulation(world, [("robot", world.robot, world.start)], seed=3)
+    sensor = sim.robots[0].sensors["in3"]
+    sensor.write("mode", "COL-COLOR")
+    colours = set()
+    for tick in range(1, 30):
+        sim.tick(tick * sim.tick_us)
+        colours.add(sensor.values()[0])
+    assert colours == {1}  # black, every time

@@ -74,3 +74,22 @@ def test_sounds_and_leds_are_recorded_as_events(run, tmp_path):
     path = tmp_path / "t.npz"
     result.trace.save(path)
     assert Trace.load(path).events == result.trace.events
+
+
+def test_the_motors_state_at_the_end_is_kept_even_after_the_last_tick(run):
+    result = run("""
+        from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C
+        import time
+        tank = MoveTank(OUTPUT_B, OUTPUT_C)
+        tank.on(30, 30)
+        time.sleep(0.5)
+        tank.off()  # after the last tick of the run: only end_motors sees it
+    """)
+    assert result.trace.end_motors == [
+        {"driving": False, "states": {"outA": "", "outB": "holding", "outC": "holding"}}
+    ]
+    running = run("""
+        from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C
+        MoveTank(OUTPUT_B, OUTPUT_C).on(30, 30)
+    """)
+    assert running.trace.end_motors[0]["driving"] is True

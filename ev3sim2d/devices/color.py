@@ -19,10 +19,10 @@ class ColorSensor(LegoSensor):
     MODES = {
         "COL-REFLECT": Mode(1, 0, "pct", "s8", 0, 100),
         "COL-AMBIENT": Mode(1, 0, "pct", "s8", 0, 100),
-        "COL-COLOR": Mode(1, 0, "col", "s8", 0, 7),
+        "COL-COLOR": Mode(1, 0, "col", "s8", 0, 7, noisy=False),
         "REF-RAW": Mode(2, 0, "", "s16", 0, 1023),
         "RGB-RAW": Mode(3, 0, "", "s16", 0, 1023),
-        "COL-CAL": Mode(4, 0, "", "u16", 0, 65535),
+        "COL-CAL": Mode(4, 0, "", "u16", 0, 65535, noisy=False),
     }
 
     def __init__(self, address, spec, surroundings, floor, ambient: float = 10.0) -> None:

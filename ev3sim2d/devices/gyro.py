@@ -19,7 +19,7 @@ class GyroSensor(LegoSensor):
         "GYRO-RATE": Mode(1, 0, "d/s", "s16", -440, 440),
         "GYRO-FAS": Mode(1, 0, "", "s16", -1464, 1464),
         "GYRO-G&A": Mode(2, 0, "", "s16", -32768, 32767),
-        "GYRO-CAL": Mode(4, 0, "", "s16", -32768, 32767),
+        "GYRO-CAL": Mode(4, 0, "", "s16", -32768, 32767, noisy=False),
         "TILT-ANG": Mode(1, 0, "deg", "s16", -32768, 32767),
         "TILT-RATE": Mode(1, 0, "d/s", "s16", -440, 440),
     }

@@ -16,11 +16,11 @@ class InfraredSensor(LegoSensor):
     DRIVER = "lego-ev3-ir"
     MODES = {
         "IR-PROX": Mode(1, 0, "pct", "u8", 0, 100),
-        "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 127),
-        "IR-REMOTE": Mode(4, 0, "btn", "u8", 0, 255),
-        "IR-REM-A": Mode(1, 0, "", "u16", 0, 65535),
-        "IR-S-ALT": Mode(4, 0, "", "u8", 0, 255),
-        "IR-CAL": Mode(2, 0, "", "u16", 0, 65535),
+        "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 127, noisy=False),
+        "IR-REMOTE": Mode(4, 0, "btn", "u8", 0, 255, noisy=False),
+        "IR-REM-A": Mode(1, 0, "", "u16", 0, 65535, noisy=False),
+        "IR-S-ALT": Mode(4, 0, "", "u8", 0, 255, noisy=False),
+        "IR-CAL": Mode(2, 0, "", "u16", 0, 65535, noisy=False),
     }
 
     def __init__(self, address, spec, surroundings) -> None:

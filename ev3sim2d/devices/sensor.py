@@ -26,6 +26,7 @@ class Mode:
     data_format: str = "s8"
     low: float = -128
     high: float = 127
+    noisy: bool = True  # False for values that name something (a colour, a button): noise would garble them
 
 
 class Surroundings(Protocol):
@@ -103,7 +104,7 @@ class LegoSensor(Device):
             mode = self.MODES[self.mode]
             scale = 10**mode.decimals
             low, high = mode.low, mode.high
-            noise = self.noise
+            noise = self.noise if mode.noisy else 0.0
             sample = []
             for v in self.measure(self.mode):
                 if noise:

@@ -11,7 +11,7 @@ REACH_CM = 0.6  # how close a wall must come to the bumper tip to press it
 
 class TouchSensor(LegoSensor):
     DRIVER = "lego-ev3-touch"
-    MODES = {"TOUCH": Mode(1, 0, "", "s8", 0, 1)}
+    MODES = {"TOUCH": Mode(1, 0, "", "s8", 0, 1, noisy=False)}
 
     def pressed(self) -> bool:
         x, y, facing = self.position()

@@ -17,7 +17,7 @@ class UltrasonicSensor(LegoSensor):
     MODES = {
         "US-DIST-CM": Mode(1, 1, "cm", "u16", 0, 2550),
         "US-DIST-IN": Mode(1, 1, "in", "u16", 0, 1003),
-        "US-LISTEN": Mode(1, 0, "", "u8", 0, 1),
+        "US-LISTEN": Mode(1, 0, "", "u8", 0, 1, noisy=False),
         "US-SI-CM": Mode(1, 1, "cm", "u16", 0, 2550),
         "US-SI-IN": Mode(1, 1, "in", "u16", 0, 1003),
         "US-DC-CM": Mode(1, 1, "cm", "u16", 0, 2550),

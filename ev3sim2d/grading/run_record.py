@@ -25,9 +25,6 @@ class RunRecord:
     trace: Trace
     world: World
     time_limit_s: float | None
-    end_motors: list[dict] | None = (
-        None  # per robot: {"driving": bool} as the worker found the motors at the end
-    )
     robot: int = 0
     _cache: dict = field(default_factory=dict, repr=False)
 
@@ -117,8 +114,9 @@ class RunRecord:
 
     def driving_at_end(self) -> bool:
         """Whether the wheel motors were still driving when the run ended (they keep going after a program ends)."""
-        if self.end_motors is not None and self.robot < len(self.end_motors):
-            return bool(self.end_motors[self.robot].get("driving"))
+        end = self.trace.end_motors
+        if self.robot < len(end):
+            return bool(end[self.robot].get("driving"))
         speeds = self.wheel_speeds()
         return bool(np.any(np.abs(speeds[-1]) > 1.0))
 

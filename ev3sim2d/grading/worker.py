@@ -25,7 +25,6 @@ import subprocess
 import sys
 import time
 import traceback
-from contextlib import contextmanager
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -153,37 +152,6 @@ def _redirect_console(folder: Path) -> None:
     faulthandler.enable(file=sys.stderr)  # a crash's traceback goes to the console file too
 
 
-def _driving(robot) -> bool:
-    """Whether a robot's wheel motors were still being driven when the run ended."""
-    for motor in (robot.left, robot.right):
-        if motor.mode not in ("stopped", "coast") and abs(motor.plan(0.01)) > 1e-6:
-            return True
-    return False
-
-
-@contextmanager
-def _noting_end_motors(into: list[dict]):
-    """Note, as the run finishes, whether each robot's wheels were still being driven.
-
-    The trace's last row is the last tick, which may come before the program's last motor
-    command (a `tank.off()` just before the program ends), and run_programs frees the
-    robots; so the worker looks at them when the simulation finishes.  Only in the worker.
-    """
-    from ..simulation import Simulation
-
-    original = Simulation.finish
-
-    def finish(sim):
-        into[:] = [{"driving": _driving(robot)} for robot in sim.robots]
-        return original(sim)
-
-    Simulation.finish = finish
-    try:
-        yield
-    finally:
-        Simulation.finish = original
-
-
 def _write_json(path: Path, data: dict) -> None:
     part = path.with_suffix(".part")
     part.write_text(json.dumps(data, default=str), encoding="utf-8")
@@ -226,15 +194,13 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
 
     variant = lesson.variants[job.variant]
     world = variant.world()
-    end_motors: list[dict] = []
     try:
-        with _noting_end_motors(end_motors):
-            result = run_programs([job.entry], world, None, job.time_s, job.seed, job.hang_s, echo=None)
+        result = run_programs([job.entry], world, None, job.time_s, job.seed, job.hang_s, echo=None)
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})
         return 0
     out_of_memory = result.error is not None and result.error.get("type") == "MemoryError"
-    record = RunRecord(result.trace, world, variant.time_s, end_motors)
+    record = RunRecord(result.trace, world, variant.time_s)
     try:
         scored = score_run(lesson, job.variant, record, out_of_memory)
     except Exception:  # noqa: BLE001 - a check's bug, not the program's: the parent says so loudly

@@ -42,7 +42,9 @@ def trace_of(world, poses, touching=None, speeds=None, dt=0.01, status="finished
 
 
 def record(world, poses, end_driving=False, **options):
-    return RunRecord(trace_of(world, poses, **options), world, 60.0, [{"driving": end_driving}])
+    trace = trace_of(world, poses, **options)
+    trace.end_motors = [{"driving": end_driving, "states": {}}]
+    return RunRecord(trace, world, 60.0)
 
 
 def line(start, end, steps, heading=None):
