@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .commands import grade, mazes, render, run, show
+from .commands import edit, grade, mazes, render, run, show
 
-COMMANDS = [run, mazes, grade, render, show]  # a new subcommand: a module in commands/ and one entry here
+COMMANDS = [run, mazes, grade, render, show, edit]  # a new subcommand: a module in commands/, one entry here
 
 
 def _parser() -> argparse.ArgumentParser:

@@ -1,0 +1,228 @@
+"""The editor's web server: one page and a small JSON API, on 127.0.0.1, for one world file.
+
+GET /api/world gives the world as JSON; POST /api/save takes the edited world,
+writes it into the file's text (see maze_writer), reads that text back with the
+world loader and only then replaces the file - atomically, keeping the previous
+version as FILE.bak.  Anything else is refused with a JSON error: other paths,
+large or non-JSON bodies, other hosts or origins.  Nothing but the one file
+(and its .bak) is ever written.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+import threading
+from http import HTTPStatus
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from pathlib import Path
+
+from ..world.source_error import WorldFileError
+from ..world.yaml_source import read_text_file
+from .maze_writer import write_maze_text
+from .world_json import BadEdit, MazeSource, edited_from_json
+
+STATIC_DIR = Path(__file__).with_name("static")
+STATIC_FILES = {
+    "/": ("index.html", "text/html; charset=utf-8"),
+    "/index.html": ("index.html", "text/html; charset=utf-8"),
+    "/editor.js": ("editor.js", "text/javascript; charset=utf-8"),
+    "/editor.css": ("editor.css", "text/css; charset=utf-8"),
+}
+MAX_BODY_BYTES = 4 * 1024 * 1024
+
+
+class WorldFile:
+    """The one file this editor may write, with its current text; saving is one at a time."""
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path).resolve()
+        self._lock = threading.Lock()
+        self.source = MazeSource(read_text_file(self.path), str(self.path))
+
+    def world_json(self) -> dict:
+        with self._lock:
+            return self.source.to_json()
+
+    def save(self, data: object) -> dict:
+        """Write the edited world; BadEdit or WorldFileError (and nothing written) when it is not a valid world."""
+        edited = edited_from_json(data)
+        with self._lock:
+            try:
+                text = write_maze_text(self.source, edited)
+            except ValueError as err:
+                raise BadEdit(str(err)) from None
+            new_source = MazeSource(text, str(self.path))  # raises WorldFileError when the world is broken
+            _check_reflects(new_source, edited)
+            changed = text != self.source.text
+            if changed:
+                write_atomically(self.path, text)
+            self.source = new_source
+            return {"saved": str(self.path), "changed": changed, "world": new_source.to_json()}
+
+
+def _check_reflects(source: MazeSource, edited) -> None:
+    """The text read back is the edited world (a mismatch is our bug, so it stays loud)."""
+    world = source.world
+    cells = [
+        [world.grid.cell(col, row) for col in range(world.grid.width)] for row in range(world.grid.height)
+    ]
+    same_starts = len(world.starts) == len(edited.starts) and all(
+        math.isclose(a, b, abs_tol=1e-5)
+        for got, want in zip(world.starts, edited.starts, strict=True)
+        for a, b in zip(got.as_dict().values(), want.as_dict().values(), strict=True)
+    )
+    if cells != [[item.cell for item in row] for row in edited.cells] or not same_starts:
+        raise RuntimeError("the written world does not read back as edited; nothing was saved")
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """Write `text` beside `path`, keep the old file as PATH.bak, then rename the new one into place."""
+    folder = path.parent
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text)
+            handle.flush()
+            os.fsync(handle.fileno())
+        if path.exists():
+            fd_bak, bak_tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".bak.tmp", dir=folder)
+            try:
+                with os.fdopen(fd_bak, "wb") as handle:
+                    handle.write(path.read_bytes())
+                os.replace(bak_tmp, path.with_name(path.name + ".bak"))
+            except BaseException:
+                Path(bak_tmp).unlink(missing_ok=True)
+                raise
+        mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
+        os.chmod(tmp_name, mode)
+        os.replace(tmp_name, path)
+    except BaseException:
+        Path(tmp_name).unlink(missing_ok=True)
+        raise
+
+
+class EditorHandler(BaseHTTPRequestHandler):
+    """Serves the page, GET /api/world and POST /api/save; refuses everything else."""
+
+    server: EditorServer
+    server_version = "ev3sim2d-editor"
+    sys_version = ""
+
+    def log_message(self, format: str, *args) -> None:  # noqa: A002 - the base class's name
+        if self.server.verbose:
+            super().log_message(format, *args)
+
+    # -- answers ---------------------------------------------------------------------
+    def _send(self, status: int, body: bytes, content_type: str) -> None:
+        self.send_response(status)
+        self.send_header("Content-Type", content_type)
+        self.send_header("Content-Length", str(len(body)))
+        self.send_header("Cache-Control", "no-store")
+        self.send_header("X-Content-Type-Options", "nosniff")
+        self.send_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data:")
+        self.end_headers()
+        if self.command != "HEAD":
+            self.wfile.write(body)
+
+    def _json(self, status: int, payload: dict) -> None:
+        self._send(status, json.dumps(payload).encode("utf-8"), "application/json; charset=utf-8")
+
+    def _error(self, status: int, message: str) -> None:
+        self._json(status, {"error": message})
+
+    def _host_ok(self) -> bool:
+        """Only our own address (a web page elsewhere cannot reach us through DNS rebinding)."""
+        port = self.server.server_address[1]
+        host = self.headers.get("Host", "")
+        if host not in (f"127.0.0.1:{port}", f"localhost:{port}"):
+            self._error(HTTPStatus.FORBIDDEN, f"wrong Host {host!r}; open http://127.0.0.1:{port}/")
+            return False
+        return True
+
+    # -- requests --------------------------------------------------------------------
+    def do_GET(self) -> None:  # noqa: N802 - http.server's name
+        if not self._host_ok():
+            return
+        path = self.path.split("?", 1)[0]
+        if path == "/api/world":
+            self._json(HTTPStatus.OK, self.server.world_file.world_json())
+            return
+        static = STATIC_FILES.get(path)
+        if static is None:
+            self._error(HTTPStatus.NOT_FOUND, f"no such page {path!r}")
+            return
+        name, content_type = static
+        self._send(HTTPStatus.OK, (STATIC_DIR / name).read_bytes(), content_type)
+
+    do_HEAD = do_GET
+
+    def do_POST(self) -> None:  # noqa: N802
+        if not self._host_ok():
+            return
+        if self.path != "/api/save":
+            self._error(
+                HTTPStatus.NOT_FOUND, f"no such endpoint {self.path!r}; the editor saves with POST /api/save"
+            )
+            return
+        origin = self.headers.get("Origin")
+        port = self.server.server_address[1]
+        if origin is not None and origin not in (f"http://127.0.0.1:{port}", f"http://localhost:{port}"):
+            self._error(HTTPStatus.FORBIDDEN, f"requests from {origin} are refused")
+            return
+        content_type = self.headers.get("Content-Type", "").split(";")[0].strip().lower()
+        if content_type != "application/json":
+            self._error(
+                HTTPStatus.UNSUPPORTED_MEDIA_TYPE, "send the world as JSON (Content-Type: application/json)"
+            )
+            return
+        try:
+            length = int(self.headers.get("Content-Length", ""))
+        except ValueError:
+            self._error(HTTPStatus.LENGTH_REQUIRED, "a Content-Length header is needed")
+            return
+        if length < 0 or length > MAX_BODY_BYTES:
+            self._error(HTTPStatus.REQUEST_ENTITY_TOO_LARGE, f"the request is over {MAX_BODY_BYTES} bytes")
+            self.close_connection = True
+            return
+        body = self.rfile.read(length)
+        try:
+            data = json.loads(body.decode("utf-8"))
+        except (UnicodeDecodeError, json.JSONDecodeError) as err:
+            self._error(HTTPStatus.BAD_REQUEST, f"the request is not JSON: {err}")
+            return
+        try:
+            result = self.server.world_file.save(data)
+        except BadEdit as err:
+            self._error(HTTPStatus.BAD_REQUEST, str(err))
+        except WorldFileError as err:
+            self._error(HTTPStatus.BAD_REQUEST, f"not saved: {err}")
+        except OSError as err:
+            self._error(HTTPStatus.INTERNAL_SERVER_ERROR, f"could not write the file: {err}")
+        except RuntimeError as err:
+            self._error(HTTPStatus.INTERNAL_SERVER_ERROR, str(err))
+        else:
+            self._json(HTTPStatus.OK, result)
+
+    def _refuse(self) -> None:
+        if self._host_ok():
+            self._error(HTTPStatus.METHOD_NOT_ALLOWED, f"{self.command} is not supported")
+
+    do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse
+
+
+class EditorServer(ThreadingHTTPServer):
+    """A ThreadingHTTPServer on 127.0.0.1 for one world file."""
+
+    daemon_threads = True
+
+    def __init__(self, world_file: WorldFile, port: int = 0, verbose: bool = False) -> None:
+        self.world_file = world_file
+        self.verbose = verbose
+        super().__init__(("127.0.0.1", port), EditorHandler)
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.server_address[1]}/"

@@ -1,0 +1,242 @@
+"""A world as the editor page sees it (plain JSON), and the edited world the page sends back.
+
+Cells are listed bottom row first (`cells[row][col]`, as in the world file's
+coordinates), each as `{wall, shade, color, char, region}`: `char` is the
+character the cell was written with (null once the page changes the cell) and
+`region` the region its legend character puts it in.  Only the regions written
+under `regions:` are editable; regions of legend characters follow their cells.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+
+from ..world.cell import WALL_SHADE, Cell
+from ..world.colors import EV3_COLORS
+from ..world.maze_file import parse_maze
+from ..world.pose import Pose
+from ..world.rectangles import Rect, merge_cells, spans_to_rects
+from ..world.world import World
+from ..world.yaml_source import Fields, load_yaml_text
+
+MAX_CELLS_PER_SIDE = 200
+MAX_CELL_CM = 1000.0
+MAX_STARTS = 8
+MAX_REGIONS = 100
+MAX_RECTS_PER_REGION = 500
+REGION_NAME = re.compile(r"^[^\x00-\x1f\x7f]{1,60}$")
+SHADE_STEPS = [round(d * 100 / 9) for d in range(10)]
+"""The greys lighten and darken step through: those of the default legend's digits 0..9."""
+
+
+@dataclass(frozen=True)
+class EditedCell:
+    """One cell as the page sends it: what it is, and the character it was written with (if unchanged)."""
+
+    cell: Cell
+    char: str | None
+
+
+@dataclass
+class EditedWorld:
+    """What the page can change: cell size, cells (bottom row first), start poses and written regions."""
+
+    cell_cm: float
+    cells: list[list[EditedCell]]
+    starts: list[Pose]
+    regions: list[tuple[str, list[Rect]]]
+
+    @property
+    def width(self) -> int:
+        return len(self.cells[0])
+
+    @property
+    def height(self) -> int:
+        return len(self.cells)
+
+
+class MazeSource:
+    """A world file's text, the World read from it, and what the editor needs to write it back."""
+
+    def __init__(self, text: str, path: str) -> None:
+        self.text = text
+        self.path = path
+        self.world: World = parse_maze(text, path)
+        grid = self.world.grid
+        lines = grid.to_text().split("\n")
+        self.chars: list[list[str]] = [list(lines[grid.height - 1 - row]) for row in range(grid.height)]
+        self.written_regions: list[tuple[str, list[Rect]]] = _written_regions(text, path, grid.cell_cm)
+
+    def as_edited(self) -> EditedWorld:
+        """The world unchanged, as the page would send it back."""
+        grid = self.world.grid
+        cells = [
+            [EditedCell(grid.cell(col, row), self.chars[row][col]) for col in range(grid.width)]
+            for row in range(grid.height)
+        ]
+        return EditedWorld(grid.cell_cm, cells, list(self.world.starts), list(self.written_regions))
+
+    def to_json(self) -> dict:
+        """The world for the page."""
+        world, grid = self.world, self.world.grid
+        legend = grid.legend
+        cells = []
+        for row in range(grid.height):
+            cells.append(
+                [
+                    {
+                        "wall": cell.wall,
+                        "shade": cell.shade,
+                        "color": cell.color,
+                        "char": self.chars[row][col],
+                        "region": legend.region(self.chars[row][col]) if legend is not None else None,
+                    }
+                    for col, cell in ((col, grid.cell(col, row)) for col in range(grid.width))
+                ]
+            )
+        body = world.robot.body
+        return {
+            "file": self.path,
+            "title": world.title,
+            "width": grid.width,
+            "height": grid.height,
+            "cell_cm": grid.cell_cm,
+            "cells": cells,
+            "starts": [pose.as_dict() for pose in world.starts],
+            "regions": [
+                {"name": name, "rects": [list(r) for r in rects]} for name, rects in self.written_regions
+            ],
+            "robot": {
+                "front_cm": body.front_cm,
+                "back_cm": body.back_cm,
+                "width_cm": body.width_cm,
+                "color": list(world.robot.color),
+            },
+            "palette": {
+                "colors": {name: list(color.display_rgb) for name, color in EV3_COLORS.items()},
+                "wall_shade": WALL_SHADE,
+                "shade_steps": SHADE_STEPS,
+            },
+        }
+
+
+def _written_regions(text: str, path: str, cell_cm: float) -> list[tuple[str, list[Rect]]]:
+    """The regions under `regions:` as rectangles in cm (cells become rectangles), in file order."""
+    fields = Fields(load_yaml_text(text, path), "the maze file", None)
+    node = fields.get("regions")
+    if node is None or node.is_null:
+        return []
+    result = []
+    for key, value in Fields(node, "'regions'", None).items():
+        spec = value.value() or {}
+        rects: list[Rect] = []
+        if spec.get("cells"):
+            spans = merge_cells((int(c), int(r)) for c, r in spec["cells"])
+            rects += spans_to_rects(spans, cell_cm)
+        if spec.get("rect_cm"):
+            rects.append(tuple(float(v) for v in spec["rect_cm"]))
+        for rect in spec.get("rects_cm") or []:
+            rects.append(tuple(float(v) for v in rect))
+        result.append((key.text, rects))
+    return result
+
+
+# -- reading what the page sends -------------------------------------------------------------
+
+
+class BadEdit(ValueError):
+    """The page sent something that is not an edited world; the message says what."""
+
+
+def edited_from_json(data: object) -> EditedWorld:
+    """Check and read the page's edited world; BadEdit names the first thing wrong."""
+    if not isinstance(data, dict):
+        raise BadEdit("the request must be a JSON object")
+    allowed = {"cell_cm", "cells", "starts", "regions"}
+    unknown = sorted(set(data) - allowed)
+    if unknown:
+        raise BadEdit(
+            f"unknown field(s) {', '.join(unknown)}; the editor sends only {', '.join(sorted(allowed))}"
+        )
+    missing = sorted(allowed - set(data))
+    if missing:
+        raise BadEdit(f"missing field(s) {', '.join(missing)}")
+    cell_cm = _number(data["cell_cm"], "cell_cm")
+    if not 0 < cell_cm <= MAX_CELL_CM:
+        raise BadEdit(f"cell_cm must be more than 0 and at most {MAX_CELL_CM:g} cm")
+    rows = data["cells"]
+    if not isinstance(rows, list) or not rows or not all(isinstance(row, list) for row in rows):
+        raise BadEdit("cells must be a list of rows, each a list of cells")
+    height, width = len(rows), len(rows[0])
+    if not (3 <= width <= MAX_CELLS_PER_SIDE and 3 <= height <= MAX_CELLS_PER_SIDE):
+        raise BadEdit(f"the grid must be 3 to {MAX_CELLS_PER_SIDE} cells each way, got {width}x{height}")
+    if any(len(row) != width for row in rows):
+        raise BadEdit("every row of cells must have the same length")
+    cells = [[_cell(item, col, row) for col, item in enumerate(items)] for row, items in enumerate(rows)]
+    starts_data = data["starts"]
+    if not isinstance(starts_data, list) or not 1 <= len(starts_data) <= MAX_STARTS:
+        raise BadEdit(f"starts must be a list of 1 to {MAX_STARTS} poses")
+    starts = [_pose(item) for item in starts_data]
+    regions_data = data["regions"]
+    if not isinstance(regions_data, list) or len(regions_data) > MAX_REGIONS:
+        raise BadEdit(f"regions must be a list of at most {MAX_REGIONS} regions")
+    regions = [_region(item) for item in regions_data]
+    names = [name for name, _ in regions]
+    if len(set(names)) != len(names):
+        raise BadEdit("two regions have the same name; give each region its own name")
+    return EditedWorld(cell_cm, cells, starts, regions)
+
+
+def _number(value: object, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise BadEdit(f"{name} must be a number")
+    return float(value)
+
+
+def _cell(item: object, col: int, row: int) -> EditedCell:
+    where = f"cell [{col}, {row}]"
+    if not isinstance(item, dict) or not {"wall", "shade", "color"} <= set(item):
+        raise BadEdit(f"{where} must be an object with wall, shade and color")
+    wall, shade, color, char = item["wall"], item["shade"], item["color"], item.get("char")
+    if not isinstance(wall, bool):
+        raise BadEdit(f"{where}: wall must be true or false")
+    if shade is not None:
+        shade = _number(shade, f"{where} shade")
+    if color is not None and color not in EV3_COLORS:
+        raise BadEdit(f"{where}: color must be one of {', '.join(EV3_COLORS)} or null")
+    if char is not None and not (isinstance(char, str) and len(char) == 1):
+        raise BadEdit(f"{where}: char must be one character or null")
+    try:
+        cell = Cell(wall=wall, shade=shade, color=color)
+    except ValueError as err:
+        raise BadEdit(f"{where}: {err}") from None
+    return EditedCell(cell, char)
+
+
+def _pose(item: object) -> Pose:
+    if not isinstance(item, dict) or set(item) != {"x_cm", "y_cm", "heading_deg"}:
+        raise BadEdit("a start must be an object with x_cm, y_cm and heading_deg")
+    return Pose(
+        _number(item["x_cm"], "x_cm"),
+        _number(item["y_cm"], "y_cm"),
+        _number(item["heading_deg"], "heading_deg"),
+    )
+
+
+def _region(item: object) -> tuple[str, list[Rect]]:
+    if not isinstance(item, dict) or set(item) != {"name", "rects"}:
+        raise BadEdit("a region must be an object with name and rects")
+    name, rects = item["name"], item["rects"]
+    if not isinstance(name, str) or not REGION_NAME.match(name) or name != name.strip():
+        raise BadEdit(f"region name {name!r} must be 1 to 60 characters, not starting or ending with a space")
+    if not isinstance(rects, list) or not 1 <= len(rects) <= MAX_RECTS_PER_REGION:
+        raise BadEdit(f"region {name!r} needs 1 to {MAX_RECTS_PER_REGION} rectangles")
+    result: list[Rect] = []
+    for rect in rects:
+        if not isinstance(rect, list) or len(rect) != 4:
+            raise BadEdit(f"region {name!r}: a rectangle is [x0, y0, x1, y1] in cm")
+        x0, y0, x1, y1 = (_number(v, f"region {name!r} rectangle") for v in rect)
+        result.append((x0, y0, x1, y1))
+    return name, result
