@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from .commands import edit, grade, mazes, render, run, show
@@ -21,7 +22,19 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _with_fixed_string_hashing() -> None:
+    """Start again with PYTHONHASHSEED=0 unless it is set: a program that iterates over a set of
+    strings must do the same thing in every run, as the fingerprint promises."""
+    if os.environ.get("PYTHONHASHSEED") is None:
+        os.environ["PYTHONHASHSEED"] = "0"
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os.execv(sys.executable, [sys.executable, "-m", "ev3sim2d", *sys.argv[1:]])
+
+
 def main(argv: list[str] | None = None) -> int:
+    if argv is None:  # the real command line, not a call from code
+        _with_fixed_string_hashing()
     args = _parser().parse_args(argv)
     command = next(c for c in COMMANDS if c.NAME == args.command)
     return command.main(args)

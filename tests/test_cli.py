@@ -154,3 +154,20 @@ def test_robot_file_replaces_the_port_mapping(tmp_path):
     end = json.loads(summary.read_text())["robots"][0]["end"]
     start = json.loads(summary.read_text())["robots"][0]["start"]
     assert abs(end["x_cm"] - start["x_cm"] - 17.59) < 0.2
+
+
+def test_runs_iterate_sets_of_strings_the_same_way_every_time(tmp_path):
+    prog = tmp_path / "sets.py"
+    prog.write_text('print(list({"alpha", "beta", "gamma", "delta", "epsilon", "zeta"}))\n')
+    outputs = set()
+    for i in range(3):
+        summary = tmp_path / f"s{i}.json"
+        env = {k: v for k, v in __import__("os").environ.items() if k != "PYTHONHASHSEED"}
+        subprocess.run(
+            [sys.executable, "-m", "ev3sim2d", "run", str(prog), "--quiet", "--summary", str(summary)],
+            check=True,
+            timeout=60,
+            env=env,
+        )
+        outputs.add(json.loads(summary.read_text())["fingerprint"])
+    assert len(outputs) == 1
