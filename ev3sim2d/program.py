@@ -6,7 +6,9 @@ scheduler runs:
   modules already imported are put aside and put back afterwards, so nothing
   outside the run changes;
 - `time.sleep/time/monotonic/perf_counter` (and their _ns forms) follow virtual
-  time; other threads keep the real clock;
+  time, and so do `datetime.datetime.now()` and `date.today()` in modules the
+  program imports (as UTC, the same on every machine); other threads keep the
+  real clock;
 - `print` and writes to stderr are recorded with the virtual time (a printed
   line costs 1 ms, as on the brick's console) and echoed;
 - threads (`threading`, and `_thread.start_new_thread`, which MoveDifferential's
@@ -19,6 +21,7 @@ from __future__ import annotations
 
 import _thread
 import builtins
+import datetime
 import importlib
 import importlib.abc
 import importlib.machinery
@@ -52,6 +55,36 @@ _real = {
     name: getattr(time, name)
     for name in ("sleep", "time", "monotonic", "perf_counter", "time_ns", "monotonic_ns", "perf_counter_ns")
 }
+
+
+class _VirtualDatetime(datetime.datetime):
+    """datetime.datetime whose now()/today() read the virtual clock (as UTC, the same on every machine)."""
+
+    @classmethod
+    def now(cls, tz=None):
+        moment = _real_datetime.fromtimestamp(time.time(), datetime.timezone.utc)
+        moment = moment.replace(tzinfo=None) if tz is None else moment.astimezone(tz)
+        return cls.combine(moment.date(), moment.timetz())
+
+    @classmethod
+    def today(cls):
+        return cls.now()
+
+    @classmethod
+    def utcnow(cls):
+        return cls.now()
+
+
+class _VirtualDate(datetime.date):
+    """datetime.date whose today() reads the virtual clock."""
+
+    @classmethod
+    def today(cls):
+        moment = _VirtualDatetime.now()
+        return cls(moment.year, moment.month, moment.day)
+
+
+_real_datetime, _real_date = datetime.datetime, datetime.date
 
 
 class ProgramError(Exception):
@@ -252,6 +285,7 @@ class SimulatedEnvironment:
         self._out = ProgramOutput("stdout", sys.stdout, self)
         self._err = ProgramOutput("stderr", sys.stderr, self)
         sys.stdout, sys.stderr, sys.stdin = self._out, self._err, io.StringIO("")
+        datetime.datetime, datetime.date = _VirtualDatetime, _VirtualDate
         self._saved_exit = os._exit
         os._exit = self._os_exit
         self._saved_random = random.getstate()
@@ -281,6 +315,7 @@ class SimulatedEnvironment:
         _thread.start_new = _real_start_new_thread
         self._threads.uninstall()
         os._exit = self._saved_exit
+        datetime.datetime, datetime.date = _real_datetime, _real_date
         random.setstate(self._saved_random)
         sys.path[:] = self._saved_path
         self._shim_link.disconnect()

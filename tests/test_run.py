@@ -279,3 +279,16 @@ def test_sleep_from_ev3dev2_auto_is_virtual(run):
     """)
     assert result.sim_time_s >= 2.0
     assert result.wall_time_s < 1.0
+
+
+def test_datetime_now_follows_the_virtual_clock(run):
+    import datetime
+
+    result = run("""
+        import time
+        from datetime import datetime, date
+        time.sleep(3)
+        print(datetime.now().isoformat(), date.today().isoformat())
+    """)
+    assert result.trace.output[0].text == "2025-01-01T00:00:03 2025-01-01"
+    assert datetime.datetime.now().year >= 2026  # outside the run, the real clock
