@@ -5,48 +5,19 @@ Debian's `chromium` driven by playwright (never `playwright install`); without i
 skipped, except in CI (CI=true), where .ci/run installs it and they must run.
 """
 
-import os
-import shutil
 from pathlib import Path
 
 import pytest
 
 from ev3sim2d.world.cell import WALL, Cell
 from ev3sim2d.world.maze_file import load_maze
-
-CHROMIUM_ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-]
-
-
-def _chromium() -> str | None:
-    for candidate in ("/usr/bin/chromium", shutil.which("chromium"), shutil.which("chromium-browser")):
-        if candidate and Path(candidate).is_file():
-            return candidate
-    return None
+from tests.headless_chromium import chromium
 
 
 @pytest.fixture(scope="module")
 def browser():
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        reason = "the playwright package is not installed (pip install -e '.[test]')"
-    else:
-        executable = _chromium()
-        if executable is not None:
-            with sync_playwright() as p:
-                launched = p.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
-                yield launched
-                launched.close()
-            return
-        reason = "no Chromium found (apt-get install chromium)"
-    if os.environ.get("CI"):
-        pytest.fail(f"CI must run the browser tests: {reason}")
-    pytest.skip(reason)
+    with chromium() as launched:
+        yield launched
 
 
 @pytest.fixture

@@ -7,8 +7,6 @@ Chromium the test is skipped, except in CI (CI=true), where .ci/run installs it 
 
 import functools
 import http.server
-import os
-import shutil
 import threading
 from fractions import Fraction
 from pathlib import Path
@@ -17,41 +15,13 @@ import av
 import pytest
 
 from ev3sim2d.render.video import VideoOptions, write_video
+from tests.headless_chromium import chromium
 
-CHROMIUM_ARGS = [
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-]
 PAGE = """<!doctype html>
 <html><body>
 <video id="v" muted playsinline preload="auto" src="%s" width="640" height="360"></video>
 </body></html>
 """
-
-
-def _chromium() -> str | None:
-    for candidate in ("/usr/bin/chromium", shutil.which("chromium"), shutil.which("chromium-browser")):
-        if candidate and Path(candidate).is_file():
-            return candidate
-    return None
-
-
-def _need_browser():
-    """playwright's sync API and a Chromium executable, or a skip (a failure in CI)."""
-    try:
-        from playwright.sync_api import sync_playwright
-    except ImportError:
-        reason = "the playwright package is not installed (pip install -e '.[test]')"
-    else:
-        executable = _chromium()
-        if executable is not None:
-            return sync_playwright, executable
-        reason = "no Chromium found (apt-get install chromium)"
-    if os.environ.get("CI"):
-        pytest.fail(f"CI must run the browser test: {reason}")
-    pytest.skip(reason)
 
 
 def _serve(folder: Path):
@@ -81,14 +51,12 @@ def _webm_copy(mp4: Path, webm: Path) -> None:
 
 
 def test_the_video_loads_and_plays_in_chromium(driving_trace, tmp_path):
-    sync_playwright, executable = _need_browser()
     options = VideoOptions(fps=30, size=(640, 360))
     frames = write_video(driving_trace, tmp_path / "run.mp4", options, progress=False)
     expected_s = frames / options.fps
     server = _serve(tmp_path)
     try:
-        with sync_playwright() as p:
-            browser = p.chromium.launch(executable_path=executable, args=CHROMIUM_ARGS)
+        with chromium() as browser:
             page = browser.new_page()
             base = f"http://127.0.0.1:{server.server_address[1]}"
             h264 = page.evaluate(
@@ -112,6 +80,5 @@ def test_the_video_loads_and_plays_in_chromium(driving_trace, tmp_path):
             page.evaluate("document.getElementById('v').play()")
             page.wait_for_function("document.getElementById('v').currentTime > 0.5", timeout=15000)
             assert page.evaluate("document.getElementById('v').error") is None
-            browser.close()
     finally:
         server.shutdown()
