@@ -85,19 +85,11 @@ class Robot:
     def near(self, x: float, y: float, reach_cm: float) -> bool:
         return self.physics.near(x, y, reach_cm, self.group)
 
-    @property
-    def pose(self) -> Pose:
-        return Pose(self.x, self.y, math.degrees(self.heading_rad))
-
     def driving(self) -> bool:
         """Whether the wheel motors are still being driven (they keep going after a program ends)."""
         return any(
             m.mode not in ("stopped", "coast") and abs(m.plan(0.01)) > 1e-6 for m in (self.left, self.right)
         )
-
-    @property
-    def touching_wall(self) -> bool:
-        return self.body.touching > 0
 
     # ------------------------------------------------------------------ ticks
     def before_step(self, dt: float) -> None:
