@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 
-from .brick import Brick
+from .devices.brick import Brick
 from .devices.color import ColorSensor
 from .devices.motor import TachoMotor
 from .devices.registry import SENSORS

@@ -11,8 +11,8 @@ from __future__ import annotations
 import errno
 import fnmatch
 
-from .devices.brick_parts import Battery, Led
-from .devices.device import Device
+from .brick_parts import Battery, Led
+from .device import Device
 
 LED_NAMES = (
     "led0:red:brick-status",
