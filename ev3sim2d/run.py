@@ -1,50 +1,50 @@
 """One run: programs drive their robots in a world until they end, the time limit, or a hang.
 
-Each program is a main task of the scheduler on a robot of its own (program i
-starts at the world's start pose i).  This thread only watches: it waits for
-the run to settle, and stops a program that spins without touching the robot
-or the clock for `hang_after_s` seconds of real time.  Whatever happens, the
-result holds the trace up to that moment.
+Each program runs in a brick process of its own (ev3sim2d/brick/), sandboxed,
+on a robot of its own (program i starts at the world's start pose i); this
+process holds the world, steps it in lockstep with the bricks (session.py) and
+records the trace.  Nothing a program does reaches this process except through
+the protocol.  Whatever happens, the result holds the trace up to that moment,
+and no process of the run is left behind.
 """
 
 from __future__ import annotations
 
-import ctypes
 import gc
+import signal
 import time
-import traceback
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from .link import ShimLink
-from .program import Program, ProgramError, SimulatedEnvironment, _real_start_new_thread
-from .scheduler import RunOver, Scheduler
+from .brick_port import BrickPort
+from .brick_process import BrickLimits, BrickProcess, shim_root, site_packages, start_brick
+from .program import Program, ProgramError
+from .protocol import PROTOCOL, ProtocolError
+from .session import Session
 from .simulation import Simulation, StartBlocked
 from .trace import OutputLine, Trace
 from .world.robot_spec import RobotSpec
 from .world.world import World
 
-_real_monotonic = time.monotonic
 _real_perf_counter = time.perf_counter
-PACKAGE_DIR = str(Path(__file__).resolve().parent)
-
-
-class ProgramHung(RunOver):
-    """Raised in a program that spun without using the robot or the clock."""
+_monotonic = time.monotonic
+START_TIMEOUT_S = 60.0  # a brick must be ready (interpreter, shim, sandbox) within this much real time
+LIMIT_SIGNALS = {"SIGXCPU": "cpu", "SIGXFSZ": "output"}
 
 
 @dataclass
 class RunResult:
     """How a run ended, and what happened in it."""
 
-    status: str  # finished, error, time_limit, hung, interrupted
+    status: str  # finished, error, time_limit, hung, interrupted, crashed
     reason: str  # one line for the terminal
     sim_time_s: float
     wall_time_s: float
     trace: Trace | None
     error: dict | None = None  # type, message, file, line, t_s, traceback
-    stray_threads: int = 0  # program threads that would not stop (the process must exit hard)
+    limit: str | None = None  # the brick's limit it ran into: cpu, memory, output
+    sandbox: list[dict] = field(default_factory=list)  # per brick: the isolation it got, layer by layer
 
     @property
     def ok(self) -> bool:
@@ -57,28 +57,6 @@ def _describe_devices(robot) -> str:
     return ", ".join(parts)
 
 
-def _error_report(exc: BaseException, program: Program, t_s: float, robot) -> dict:
-    """The program's exception, its traceback cut to the program's and the shim's frames."""
-    frames = [f for f in traceback.extract_tb(exc.__traceback__) if not f.filename.startswith(PACKAGE_DIR)]
-    text = "Traceback (most recent call last):\n" + "".join(traceback.format_list(frames))
-    text += "".join(traceback.format_exception_only(type(exc), exc))
-    own = [f for f in frames if Path(f.filename) == program.path]
-    where = own[-1] if own else (frames[-1] if frames else None)
-    message = str(exc)
-    hint = None
-    if type(exc).__name__ == "DeviceNotFound":
-        hint = f"this robot has: {_describe_devices(robot)}"
-    return {
-        "type": type(exc).__name__,
-        "message": message,
-        "file": str(program.path) if own else (where.filename if where else None),
-        "line": where.lineno if where else None,
-        "t_s": t_s,
-        "traceback": text,
-        "hint": hint,
-    }
-
-
 def run_programs(
     programs: list[str | Path],
     world: World,
@@ -88,10 +66,16 @@ def run_programs(
     hang_after_s: float = 5.0,
     echo=None,
     presses: list | None = None,
+    readable: list[list[Path]] | None = None,
+    limits: BrickLimits | None = None,
+    sandbox: bool = True,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
     presses: scripted button presses (ButtonPress), added to the world file's.
+    readable: per program, what its brick may read besides Python itself (default: the program's folder).
+    limits: CPU time, memory, file sizes and processes of each brick.
+    sandbox: False only for measuring what the sandbox costs; a program is never graded without one.
     """
     loaded = [Program(p) for p in programs]  # ProgramError: the caller reports it
     if len(loaded) > len(world.starts):
@@ -103,110 +87,178 @@ def run_programs(
     names = ["robot"] if len(loaded) == 1 else [f"robot{i + 1}" for i in range(len(loaded))]
     sim = Simulation(world, [(names[i], spec, world.starts[i]) for i in range(len(loaded))], seed=seed)
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
-    scheduler = Scheduler(sim.tick_us, sim.tick, limit_us)
     presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
     sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
-    link = ShimLink(scheduler, sim.trace, sim.robots, presses)
-    env = SimulatedEnvironment(
-        scheduler, link, sim.trace, sim.robots, seed, sorted({p.path.resolve().parent for p in loaded}), echo
-    )
-    tasks = []
-    with env:
-        for program, bot in zip(loaded, sim.robots, strict=False):
-            tasks.append(
-                scheduler.spawn(bot.name, bot, env.main_body(program), _real_start_new_thread, main=True)
-            )
+    limits = limits or BrickLimits()
+    bricks: list[BrickProcess] = []
+    ports: list[BrickPort] = []
+    session = None
+    wall = 0.0
+    try:
+        for i, program in enumerate(loaded):
+            path = program.path.resolve()
+            may_read = readable[i] if readable else [path.parent]
+            brick, read_paths = start_brick(list(may_read))
+            bricks.append(brick)
+            config = {
+                "protocol": PROTOCOL,
+                "robot": names[i],
+                "tick_us": sim.tick_us,
+                "limit_us": limit_us,
+                "seed": seed,
+                "program": str(path),
+                "program_dirs": [str(path.parent)],
+                "shim_root": str(shim_root()),
+                "site_packages": site_packages(),
+                "sandbox": {
+                    "read_paths": read_paths,
+                    "write_paths": [str(brick.scratch)],
+                    "cpu_s": limits.cpu_s,
+                    "memory_mb": limits.memory_mb,
+                    "file_mb": limits.file_mb,
+                    "processes": limits.processes,
+                }
+                if sandbox
+                else None,
+            }
+            brick.channel.send(["welcome", config])
+            ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, echo))
+        for port in ports:
+            _await_hello(port)
+        session = Session(sim, ports, limit_us, hang_after_s)
         wall_start = _real_perf_counter()
-        scheduler.start()
-        status_override = _watch(scheduler, hang_after_s)
-    wall = _real_perf_counter() - wall_start
-    result = _result(scheduler, sim, loaded, tasks, wall, status_override, env.dropped_lines)
-    del sim, env, link, scheduler, tasks
+        session.run()
+        wall = _real_perf_counter() - wall_start
+    except KeyboardInterrupt:
+        for port in ports:
+            port.gone = port.gone or "interrupted"
+        session = session or Session(sim, ports, limit_us, hang_after_s)
+        session.interrupted = True
+    finally:
+        for brick in bricks:
+            brick.stop()
+    result = _result(sim, loaded, ports, bricks, wall, session)
+    del sim, ports, session
     gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
     return result
 
 
-def _watch(scheduler: Scheduler, hang_after_s: float) -> str | None:
-    """Wait for the run to settle; stop it if it hangs or the user interrupts it."""
-    last = scheduler.now_us  # a program that uses the robot or the clock moves it
-    last_change = _real_monotonic()
+def _await_hello(port: BrickPort) -> None:
+    """The brick is up (interpreter, shim, sandbox) and says what isolation it got."""
     try:
-        while not scheduler.settled.wait(0.05):
-            seen = scheduler.now_us
-            now = _real_monotonic()
-            if seen != last:
-                last, last_change = seen, now
-            elif now - last_change > hang_after_s:
-                _stop_hung(scheduler)
-                return "hung"
-    except KeyboardInterrupt:
-        scheduler.stop("interrupted")
-        _interrupt(scheduler, RunOver)
-        scheduler.settled.wait(1.0)
-        return "interrupted"
-    return None
+        message = port.channel.receive(timeout_s=START_TIMEOUT_S)
+    except ProtocolError as err:
+        port.gone = f"start: {err}"
+        return
+    if message is None:
+        port.gone = f"start: the brick was not ready within {START_TIMEOUT_S:g} s"
+    elif message[0] == "hello" and len(message) == 2 and isinstance(message[1], dict):
+        port.hello = message[1]
+    elif message[0] == "end" and len(message) == 2 and isinstance(message[1], dict):
+        port.end = message[1]  # it could not even start the program (it says why)
+    else:
+        port.gone = "start: the brick did not greet"
 
 
-def _interrupt(scheduler: Scheduler, exc_type: type) -> None:
-    for task in scheduler.tasks:
-        if not task.done and task.thread_id is not None:
-            ctypes.pythonapi.PyThreadState_SetAsyncExc(
-                ctypes.c_ulong(task.thread_id), ctypes.py_object(exc_type)
-            )
+def _program_error(port: BrickPort, program: Program) -> dict | None:
+    """The program's error as the brick reported it, checked and with the file named as the user named it."""
+    how = port.end or {}
+    error = how.get("error")
+    if how.get("status") != "error" or not isinstance(error, dict):
+        return None
+    shown, real = str(program.path), str(program.path.resolve())
+
+    def text(key: str, limit: int = 20_000) -> str:
+        value = error.get(key)
+        return str(value)[:limit].replace(real, shown) if value is not None else ""
+
+    line = error.get("line")
+    report = {
+        "type": text("type", 200) or "Exception",
+        "message": text("message", 2000),
+        "file": text("file", 1000) or None,
+        "line": line if type(line) is int else None,
+        "t_s": port.time_us / 1e6,
+        "traceback": text("traceback"),
+        "hint": None,
+    }
+    if report["type"] == "DeviceNotFound":
+        report["hint"] = f"this robot has: {_describe_devices(port.robot)}"
+    return report
 
 
-def _stop_hung(scheduler: Scheduler) -> None:
-    """Stop a spinning program: raise ProgramHung in it, a few times if it catches it."""
-    scheduler.stop("hung")
-    for _ in range(10):
-        _interrupt(scheduler, ProgramHung)
-        if scheduler.settled.wait(0.2):
-            return
+def _crash(port: BrickPort, brick: BrickProcess) -> tuple[str, str | None]:
+    """Why a brick ended without saying so: a limit it ran into, or how its process died."""
+    name = brick.ended_by_signal()
+    console = getattr(brick, "console_text", "")
+    if name in LIMIT_SIGNALS:
+        return LIMIT_SIGNALS[name], LIMIT_SIGNALS[name]
+    if "MemoryError" in console:
+        return "memory", "memory"
+    if name is not None:
+        return f"the program's process was killed by {name}", None
+    last = console.splitlines()[-1] if console else "no message"
+    return f"the program's process ended without a word (exit status {brick.popen.returncode}: {last})", None
 
 
-def _result(scheduler, sim, programs, tasks, wall, status_override, dropped_lines) -> RunResult:
-    t = scheduler.now_s
+def _result(sim, programs, ports, bricks, wall, session) -> RunResult:
+    t = session.world_us / 1e6 if session is not None else 0.0
     error = None
-    for task, program in zip(tasks, programs, strict=False):
-        exc = task.error
-        if exc is None or isinstance(exc, RunOver):
-            continue
-        if isinstance(exc, SystemExit) and exc.code in (None, 0):
-            continue
-        if error is None:
-            error = _error_report(exc, program, t, task.owner)
+    status = None
+    reason = None
+    limit = None
+    for port, program, brick in zip(ports, programs, bricks, strict=False):
+        found = _program_error(port, program)
+        if found is not None and error is None:
+            error = found
             if len(programs) > 1:
-                error["robot"] = task.owner.name
-    if status_override == "hung":
-        status = "hung"
-        reason = (
-            f"stopped: the program ran for a while without using the robot or the clock "
-            f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
-        )
-    elif status_override == "interrupted":
-        status, reason = "interrupted", f"interrupted at {t:.2f} s"
-    elif error is not None:
+                error["robot"] = port.robot.name
+        if port.gone == "hung" and status is None:
+            status = "hung"
+            reason = (
+                f"stopped: the program ran for a while without using the robot or the clock "
+                f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
+            )
+        elif port.gone == "interrupted" and status is None:
+            status, reason = "interrupted", f"interrupted at {t:.2f} s"
+        elif port.gone is not None and port.gone != "time limit" and status is None:
+            what, limit = _crash(port, brick) if port.gone.startswith(("gone", "start")) else (port.gone, None)
+            if limit == "cpu":
+                what = "the program used more CPU time than it may"
+            elif limit == "output":
+                what = "the program wrote files larger than it may"
+            elif limit == "memory":
+                what = "the program ran out of memory"
+            status, reason = "crashed", f"{what} (at {t:.2f} s)"
+    ends = [(port.end or {}).get("status") for port in ports]
+    if status is None and error is not None:
         status = "error"
         where = f"{error['file']}, line {error['line']}, " if error["line"] else ""
         reason = f"{error['type']}: {error['message']} ({where}at {t:.2f} s)"
-    elif scheduler.end_reason == "deadlock":
+    elif status is None and "deadlock" in ends:
         status = "hung"
         reason = f"stopped: every thread of the program is waiting for another (a deadlock) at {t:.2f} s"
-    elif scheduler.end_reason == "time_limit":
+    elif status is None and "time_limit" in ends:
         status, reason = "time_limit", f"ran until the time limit of {t:.2f} s"
-    else:
+    elif status is None:
         status, reason = "finished", f"finished at {t:.2f} s"
-    sim.finish()
-    sim.trace.result = {
+    if error is not None and error["type"] == "MemoryError":
+        limit = "memory"
+    trace = sim.finish()
+    trace.output.sort(key=lambda line: (line.t_s, line.robot))
+    trace.events.sort(key=lambda e: (e[0], e[1]))
+    dropped = sum(port.dropped_lines for port in ports)
+    trace.result = {
         "status": status,
         "reason": reason,
         "sim_time_s": t,
         "error_type": error["type"] if error else None,
         "error": error,
-        "dropped_output_lines": dropped_lines,
+        "dropped_output_lines": dropped,
+        "limit": limit,
     }
-    stray = sum(1 for task in tasks if not task.done)
-    return RunResult(status, reason, t, wall, sim.trace, error, stray)
+    sandbox = [dict((port.hello or {}).get("sandbox") or {}) for port in ports]
+    return RunResult(status, reason, t, wall, trace, error, limit, sandbox)
 
 
 def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
@@ -219,4 +271,4 @@ def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
     return echo
 
 
-__all__ = ["run_programs", "RunResult", "ProgramError", "StartBlocked", "echo_line"]
+__all__ = ["run_programs", "RunResult", "ProgramError", "StartBlocked", "echo_line", "signal"]

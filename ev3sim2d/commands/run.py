@@ -116,9 +116,6 @@ def main(args) -> int:
         "error": EXIT_PROGRAM_ERROR,
         "hung": EXIT_HUNG,
         "interrupted": EXIT_INTERRUPTED,
+        "crashed": EXIT_PROGRAM_ERROR,
     }[result.status]
-    if result.stray_threads:  # a program thread that would not stop
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os._exit(code)
     return code

@@ -23,6 +23,9 @@ class Led(Device):
             ),
         )
         self.writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
+        self.write_rules.update(brightness=["int", 0, None], trigger=["any"])
+        self.constants = {"max_brightness"}
+        self.settings = {"brightness", "trigger"}
         self.readers.pop("address")
         self.readers.pop("driver_name")
 

@@ -37,6 +37,14 @@ class Device:
             "driver_name": lambda: self.driver_name,
         }
         self.writers: dict[str, Callable[[str], None]] = {}
+        # what each writer accepts, so that a brick can check a write itself and send it on without
+        # waiting for an answer (see ev3sim2d/protocol): ["int", low, high] (None: no bound),
+        # ["choice", [texts]] (compared after strip), ["any"]; a writer not listed is asked every time
+        self.write_rules: dict[str, list] = {}
+        # how often a brick must ask for an attribute's value: a constant once; a setting again only
+        # after the program wrote to the device; any other attribute changes with the world (each tick)
+        self.constants: set[str] = {"address", "driver_name"}
+        self.settings: set[str] = set()
 
     def read(self, attribute: str) -> str:
         reader = self.readers.get(attribute)

@@ -98,6 +98,22 @@ class TachoMotor(Device):
             ramp_down_sp=lambda v: setattr(self, "ramp_down_sp", self._ramp(v)),
             position=self._set_position,
         )
+        self.constants |= {"commands", "count_per_rot", "max_speed", "stop_actions"}
+        self.settings |= {"polarity", "stop_action", "speed_sp", "position_sp", "time_sp", "duty_cycle_sp"}
+        self.settings |= {"ramp_up_sp", "ramp_down_sp", *self.pid}
+        self.write_rules.update(
+            command=["choice", list(COMMANDS)],
+            polarity=["choice", ["normal", "inversed"]],
+            stop_action=["choice", list(STOP_ACTIONS)],
+            speed_sp=["int", -max_speed, max_speed],
+            position_sp=["int", None, None],
+            time_sp=["int", 0, None],
+            duty_cycle_sp=["int", -100, 100],
+            ramp_up_sp=["int", 0, 60000],
+            ramp_down_sp=["int", 0, 60000],
+            position=["int", None, None],
+            **{pid: ["int", None, None] for pid in self.pid},
+        )
 
     # ------------------------------------------------------------ attributes
     def _reset(self) -> None:

@@ -81,6 +81,9 @@ class LegoSensor(Device):
         for n in range(8):
             r[f"value{n}"] = lambda n=n: self._value(n)
         w.update(mode=self._set_mode, command=self._set_command)
+        self.write_rules["mode"] = ["choice", list(self.MODES)]
+        self.constants |= {"modes", "commands"}
+        self.settings |= {"mode", "num_values", "decimals", "units", "bin_data_format"}
 
     # ------------------------------------------------------------ attributes
     def _set_mode(self, value: str) -> None:

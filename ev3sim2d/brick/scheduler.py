@@ -1,4 +1,4 @@
-"""Virtual time: one clock, the world's ticks, and the turns of program tasks.
+"""Virtual time in a brick: one clock, the world's ticks, and the turns of the program's tasks.
 
 Time is counted in whole microseconds, so every run adds up the same way on
 every machine.  The world advances in fixed ticks (`tick_us`).  Program tasks
@@ -14,8 +14,11 @@ event's): it leaves the queue until another task wakes the channel, or until
 its timeout, if it has one.  If every live task is blocked with no timeout,
 no one can ever wake them: the run ends as a deadlock.
 
-With a single task nothing is queued: spending time just steps the world
-inline, which keeps the common case fast.
+With a single task nothing is queued: spending time just passes the ticks
+inline, which keeps the common case fast.  In a brick process, `on_tick` only
+tells the simulator that the clock passed a tick (`batch_ticks`: once for the
+last of several ticks passed at once, as a long sleep does); the world steps in
+the simulator process.
 """
 
 from __future__ import annotations
@@ -68,10 +71,17 @@ class Task:
 class Scheduler:
     """The virtual clock: ticks the world and hands the turn between tasks."""
 
-    def __init__(self, tick_us: int, on_tick: Callable[[int], None], limit_us: int | None = None) -> None:
+    def __init__(
+        self,
+        tick_us: int,
+        on_tick: Callable[[int], None],
+        limit_us: int | None = None,
+        batch_ticks: bool = False,
+    ) -> None:
         if tick_us <= 0:
             raise ValueError("tick_us must be positive")
         self.tick_us = tick_us
+        self.batch_ticks = batch_ticks
         self.now_us = 0
         self.next_tick_us = tick_us
         self.limit_us = limit_us
@@ -99,6 +109,11 @@ class Scheduler:
             raise RunOver()
         tick_us = self.tick_us
         on_tick = self._on_tick
+        if self.batch_ticks and self.next_tick_us <= target_us:
+            last = self.next_tick_us + (target_us - self.next_tick_us) // tick_us * tick_us
+            self.now_us = last
+            self.next_tick_us = last + tick_us
+            on_tick(last)
         while self.next_tick_us <= target_us:
             self.now_us = self.next_tick_us
             on_tick(self.now_us)

@@ -5,7 +5,7 @@ import time
 
 import pytest
 
-from ev3sim2d.scheduler import RunOver, Scheduler
+from ev3sim2d.brick.scheduler import RunOver, Scheduler
 
 
 def run_tasks(scheduler, bodies):

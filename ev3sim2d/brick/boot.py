@@ -1,0 +1,82 @@
+"""The brick process's start: connect, load the trusted parts, enter the sandbox, run the program, report.
+
+The simulator starts it as `python -I -S -B boot.py FD ROOT` with a short fixed
+environment: FD is the connection (one end of a socket pair), ROOT the folder
+that holds the `ev3sim2d` package.  Only the standard library, ev3sim2d.brick,
+ev3sim2d.protocol and the ev3dev2 shim are loaded here: nothing of the world,
+the devices, the lesson or the grader exists in this process.
+
+Order matters: the welcome (configuration) arrives first; the virtual clock
+and the shim are installed while every file may still be read; then the
+sandbox closes the process in (sandbox.py); only then is the program's file
+read and run.  The `end` message says how it ended.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+
+def _connect(fd: int):
+    import socket
+
+    from ev3sim2d.protocol import Channel
+
+    return Channel(socket.socket(fileno=fd))
+
+
+def main(argv: list[str]) -> int:
+    fd, root = int(argv[1]), argv[2]
+    sys.path.insert(0, root)
+    from ev3sim2d.protocol import PROTOCOL, ProtocolError
+
+    channel = _connect(fd)
+    try:
+        welcome = channel.receive(timeout_s=120)
+    except ProtocolError:
+        return 2
+    if not welcome or welcome[0] != "welcome" or welcome[1].get("protocol") != PROTOCOL:
+        channel.send(["end", {"t_us": 0, "status": "refused", "error": None}])
+        return 2
+    config = welcome[1]
+    sys.path[1:1] = [config["shim_root"]]
+    sys.path.extend(p for p in config.get("site_packages", ()) if p not in sys.path)
+
+    from ev3sim2d.brick.run import BrickRun
+
+    brick = BrickRun(channel, config)
+    brick.prepare()  # the virtual clock, the shim: before the sandbox, while the files are readable
+    report = _enter_sandbox(config, fd)
+    sys.path.remove(root)
+    channel.send(["hello", {"protocol": PROTOCOL, "sandbox": report, "python": sys.version.split()[0]}])
+    brick.run()
+    return 0
+
+
+def _enter_sandbox(config: dict, fd: int) -> dict:
+    policy = config.get("sandbox")
+    if policy is None:
+        return {"sandbox": "off: the simulator asked for none"}
+    try:
+        from ev3sim2d.brick import sandbox
+    except ImportError as err:  # pragma: no cover - an incomplete installation
+        return {"sandbox": f"off: {err}"}
+    read_paths = [*policy["read_paths"], *sandbox.default_read_paths()]
+    return sandbox.enter(
+        sandbox.SandboxPolicy(
+            read_paths=read_paths,
+            write_paths=policy["write_paths"],
+            keep_fds=[fd],
+            cpu_s=policy["cpu_s"],
+            memory_mb=policy["memory_mb"],
+            file_mb=policy["file_mb"],
+            processes=policy["processes"],
+        )
+    )
+
+
+if __name__ == "__main__":
+    code = main(sys.argv)
+    sys.stdout.flush()
+    os._exit(code)

@@ -1,0 +1,92 @@
+"""One program's run inside its brick process: the clock, the link, the shim, the program's main task.
+
+The brick's scheduler turns the program's threads in virtual time; each time
+its clock passes a tick it tells the simulator (link.tick), which steps the
+world in lockstep.  The run ends when every main task has ended, at the time
+limit, on a deadlock, or when the simulator stops it; the `end` message says
+which, and carries the program's error if it had one.
+"""
+
+from __future__ import annotations
+
+import importlib
+import threading
+
+from ..protocol import ProtocolError
+from .environment import BrickEnvironment, _real_start_new_thread
+from .link import BrickLink
+from .program import Program, ending, error_report
+from .scheduler import Scheduler
+
+SHIM_MODULES = (
+    "ev3dev2",
+    "ev3dev2.motor",
+    "ev3dev2.sensor",
+    "ev3dev2.sensor.lego",
+    "ev3dev2.sound",
+    "ev3dev2.led",
+    "ev3dev2.button",
+    "ev3dev2.power",
+    "ev3dev2.port",
+    "ev3dev2.unit",
+    "ev3dev2.wheel",
+    "ev3dev2.stopwatch",
+)
+
+
+class BrickRun:
+    """The program of one robot, run in this process against the simulator at the other end of channel."""
+
+    def __init__(self, channel, config: dict) -> None:
+        self.channel = channel
+        self.config = config
+        self.program_path = config["program"]
+
+    def prepare(self) -> None:
+        """Everything that needs files the sandbox will hide: clock patches first, then the shim."""
+        config = self.config
+        self.scheduler = Scheduler(config["tick_us"], self._tick, config.get("limit_us"), batch_ticks=True)
+        self.link = BrickLink(self.channel, self.scheduler)
+        self.env = BrickEnvironment(
+            self.scheduler, self.link, config.get("seed", 0), self.program_path, config.get("program_dirs", [])
+        )
+        self.env.install()
+        for name in SHIM_MODULES:
+            importlib.import_module(name)
+        importlib.import_module("ev3dev2._link").connect(self.link)
+
+    def _tick(self, tick_us: int) -> None:
+        self.link.tick(tick_us)
+
+    def run(self) -> None:
+        s = self.scheduler
+        try:
+            with open(self.program_path, encoding="utf-8") as f:
+                source = f.read()
+            program = Program(self.program_path, source)
+        except (OSError, UnicodeDecodeError, SyntaxError, ValueError) as exc:
+            self._end({"t_us": 0, "status": "error", "error": error_report(exc, self.program_path, 0.0)})
+            return
+        task = s.spawn("robot", None, self.env.main_body(program.run), _real_start_new_thread, main=True)
+        s.start()
+        s.settled.wait()
+        self.env.finish()
+        how = ending([task], self.program_path, s)
+        if self.link.stopped:
+            how["status"] = "stopped"
+        self._end(how)
+
+    def _end(self, how: dict) -> None:
+        try:
+            self.link.flush()
+            self.channel.send(["end", how])
+        except ProtocolError:
+            pass
+        # wait until the simulator has read everything (it closes the connection), but not for ever
+        try:
+            self.channel.receive(timeout_s=5.0)
+        except ProtocolError:
+            pass
+
+
+__all__ = ["BrickRun", "threading"]

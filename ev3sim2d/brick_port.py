@@ -1,0 +1,275 @@
+"""The simulator's end of one brick's connection: its ops applied to its robot's devices, in order.
+
+A brick sends what its program did (see ev3sim2d/protocol/messages.py); the
+port queues the ops and applies them when the session lets it: writes go to
+the robot's devices, calls to the speaker, LCD and buttons, printed lines and
+events to the trace.  Everything a brick sends is checked: it is a student's
+program at the other end, and anything that is not the protocol (a wrong key,
+time running backwards, a message too large) ends that brick's run.
+"""
+
+from __future__ import annotations
+
+import errno
+from collections import deque
+
+from .devices.brick import Brick
+from .protocol import ProtocolError
+from .trace import OutputLine
+
+MAX_KEYS = 10_000
+MAX_LINE = 2_000  # characters of one printed line that are kept
+MAX_RECORDED_LINES = 5_000
+LCD_BYTES = 178 * 128
+
+
+class NoButtonPress(RuntimeError):
+    """The program waits for a button that no scripted press will ever push."""
+
+
+class BrickPort:
+    """One brick as the simulator sees it: a robot, a connection, a queue of ops."""
+
+    def __init__(self, index: int, robot, channel, trace, presses: list, echo=None) -> None:
+        self.index = index
+        self.robot = robot
+        self.brick: Brick = robot.brick
+        self.channel = channel
+        self.trace = trace
+        self.presses = presses
+        self.echo = echo
+        self.queue: deque = deque()
+        self.keys: list[tuple] = []  # key -> (device or None, attribute, error if unknown)
+        self.subscribed: list[int] = []
+        self.marker: int | None = None  # a tick the brick passed that the world has not reached
+        self.declared = 0  # the last tick marker applied: the brick's clock is past it
+        self.time_us = 0  # the brick's clock as far as the simulator knows
+        self.end: dict | None = None  # the end message, or why the brick is gone
+        self.gone: str | None = None  # the brick broke the protocol or died
+        self.volume = 100
+        self.dropped_lines = 0
+        self.last_heard = 0.0
+        self.hello: dict | None = None
+        self._answers: list = []  # answers to the ops of the batch being applied
+
+    @property
+    def finished(self) -> bool:
+        return self.end is not None or self.gone is not None
+
+    # ------------------------------------------------------------ receiving
+    def accept(self, message: list) -> None:
+        """Queue what a message brings."""
+        kind = message[0]
+        if kind == "ops" and len(message) == 2 and type(message[1]) is list:
+            self.queue.extend(message[1])
+        elif kind == "end" and len(message) == 2 and type(message[1]) is dict:
+            self.queue.append(["end", message[1]])
+        else:
+            raise ProtocolError(f"unexpected message {kind!r}")
+
+    # ------------------------------------------------------------- applying
+    def run_ops(self, world_us: int) -> None:
+        """Apply queued ops until a tick marker ahead of the world (kept in self.marker) or the queue's end."""
+        queue = self.queue
+        while queue and self.marker is None and not self.finished:
+            op = queue.popleft()
+            if type(op) is not list or not op:
+                raise ProtocolError("an op must be a non-empty JSON array")
+            kind = op[0]
+            if kind == "w":
+                self._write(op)
+            elif kind == "t":
+                tick = op[1] if len(op) == 2 else None
+                if type(tick) is not int or tick < self.time_us or tick < world_us:
+                    raise ProtocolError(f"tick marker {tick!r} goes back in time")
+                self.time_us = self.declared = tick
+                if tick > world_us:
+                    self.marker = tick
+            elif kind == "p":
+                self._print(op)
+            elif kind == "k":
+                self._define(op)
+            elif kind == "R":
+                self._answers.append(self._subscribe(op))
+            elif kind == "W":
+                self._answers.append(self._checked_write(op))
+            elif kind == "c":
+                self._call(op, answer=False)
+            elif kind == "C":
+                self._answers.append(self._call(op, answer=True))
+            elif kind == "q":
+                answers, self._answers = self._answers, []
+                self.channel.send(["reply", answers, self.values()])
+            elif kind == "end":
+                self._finish(op[1])
+            else:
+                raise ProtocolError(f"unknown op {kind!r}")
+
+    def _key(self, op: list, at: int = 1):
+        try:
+            return self.keys[op[at]]
+        except (IndexError, TypeError):
+            raise ProtocolError(f"op {op[:1]} names an undefined key") from None
+
+    def _define(self, op: list) -> None:
+        if len(op) != 5 or op[1] != len(self.keys) or len(self.keys) >= MAX_KEYS:
+            raise ProtocolError("keys must be defined in order, 0, 1, 2, ...")
+        _, _, class_name, device_name, attribute = op
+        if not all(type(x) is str for x in (class_name, device_name, attribute)):
+            raise ProtocolError("a key names a class, a device and an attribute (texts)")
+        try:
+            device = self.brick.device(class_name, device_name)
+        except OSError as err:
+            self.keys.append((None, attribute, [err.errno, err.strerror or str(err)]))
+            return
+        self.keys.append((device, attribute, None))
+
+    def _read(self, key: int):
+        device, attribute, error = self.keys[key]
+        if error is not None:
+            return error
+        reader = device.readers.get(attribute)
+        try:
+            return reader() if reader is not None else device.read(attribute)
+        except OSError as err:
+            return [err.errno or errno.EIO, err.strerror or str(err)]
+
+    def values(self) -> list:
+        """Every subscribed attribute's value now, in the order the brick first read them."""
+        read = self._read
+        return [read(key) for key in self.subscribed]
+
+    def _subscribe(self, op: list) -> list:
+        """A read that wants an answer: [how the value changes, the value now]; a value that changes with
+        the world from now on comes in every snapshot and reply."""
+        device, attribute, error = self._key(op)
+        key = op[1]
+        if error is not None or attribute in device.constants or attribute not in device.readers:
+            kind = "constant"
+        elif attribute in device.settings:
+            kind = "setting"
+        else:
+            kind = "live"
+            if key not in self.subscribed:
+                self.subscribed.append(key)
+        return [kind, self._read(key)]
+
+    def _apply_write(self, key: int, value) -> list | None:
+        device, attribute, error = self.keys[key]
+        if error is not None:
+            return error
+        if type(value) is not str:
+            raise ProtocolError("a written value is text")
+        writer = device.writers.get(attribute)
+        try:
+            if writer is None:
+                device.write(attribute, value)  # raises the right error
+            else:
+                writer(value)
+        except OSError as err:
+            return [err.errno or errno.EIO, err.strerror or str(err)]
+        if device.sysfs_class == "leds":
+            self.trace.add_event(
+                self.time_us / 1e6, self.index, "leds", {n: led.brightness for n, led in self.brick.leds.items()}
+            )
+        return None
+
+    def _write(self, op: list) -> None:
+        self._key(op)
+        if len(op) == 4:
+            self._at(op[3])
+        self._apply_write(op[1], op[2] if len(op) > 2 else None)
+        # a value the brick checked and the device refused is ignored: the brick broke no rule we know
+
+    def _checked_write(self, op: list) -> list:
+        device, attribute, _ = self._key(op)
+        error = self._apply_write(op[1], op[2] if len(op) > 2 else None)
+        rule = device.write_rules.get(attribute) if device is not None else None
+        return [error, rule]
+
+    def _at(self, t_us) -> None:
+        if type(t_us) is not int or t_us < self.time_us:
+            raise ProtocolError("time goes back")
+        self.time_us = t_us
+
+    def _print(self, op: list) -> None:
+        if len(op) != 4 or type(op[2]) is not str or type(op[3]) is not str:
+            raise ProtocolError("a printed line is [p, t_us, stream, text]")
+        self._at(op[1])
+        stream = "stderr" if op[2] == "stderr" else "stdout"
+        text = op[3]
+        if len(text) > MAX_LINE:
+            text = text[:MAX_LINE] + f" ... ({len(op[3]) - MAX_LINE} more characters)"
+        if len(self.trace.output) >= MAX_RECORDED_LINES:
+            self.dropped_lines += 1
+            return
+        line = OutputLine(self.time_us / 1e6, self.index, stream, text)
+        self.trace.add_output(line)
+        if self.echo is not None:
+            self.echo(line)
+
+    def _call(self, op: list, answer: bool):
+        if len(op) != 4 or type(op[2]) is not str or type(op[3]) is not list:
+            raise ProtocolError("a call is [c, t_us, feature, [args]]")
+        self._at(op[1])
+        feature, args = op[2], op[3]
+        try:
+            result = self._feature(feature, args)
+        except NoButtonPress as err:
+            return {"error": ["NoButtonPress", str(err)]}
+        except (TypeError, ValueError, KeyError, IndexError) as err:
+            return {"error": ["RuntimeError", f"bad call to {feature}: {err}"]}
+        return result if answer else None
+
+    def _feature(self, feature: str, args: list):
+        now_s = self.time_us / 1e6
+        if feature == "devices":
+            class_name, pattern, match = args
+            if type(match) is not dict:
+                raise TypeError("match must be a dict")
+            return self.brick.list_device_names(str(class_name), str(pattern), match)
+        if feature == "sound":
+            kind, details = str(args[0]), dict(args[1])
+            if kind == "get_volume":
+                return self.volume
+            if kind == "set_volume":
+                self.volume = details.get("pct", 100)
+            elif details.get("duration"):
+                tick_s = self.trace.tick_s
+                self.robot.sound_until_tick = int((now_s + float(details["duration"])) // tick_s) + 1
+            self.trace.add_event(now_s, self.index, "sound", {"kind": kind, **details})
+            return None
+        if feature == "display":
+            pixels = bytes.fromhex(args[0])
+            if len(pixels) != LCD_BYTES:
+                raise ValueError(f"an LCD frame has {LCD_BYTES} bytes")
+            self.trace.add_event(now_s, self.index, "lcd", {"frame": self.trace.add_lcd_frame(pixels)})
+            return None
+        if feature == "buttons":
+            pressed = [p.button for p in self.presses if p.down_at(now_s)]
+            if (
+                args
+                and args[0] == "wait"
+                and not pressed
+                and all(p.at_s + p.hold_s <= now_s for p in self.presses)
+            ):
+                raise NoButtonPress(
+                    "the program waits for a button press, but no press is scripted from now on: "
+                    "run with --press enter@2.0 (BUTTON@SECONDS), or add `buttons: [enter@2.0]` to the world file"
+                )
+            return pressed
+        raise ValueError(f"no feature {feature!r}")
+
+    def _finish(self, how) -> None:
+        if type(how) is not dict:
+            raise ProtocolError("end carries a dict")
+        t = how.get("t_us")
+        if type(t) is not int or t < self.time_us:
+            raise ProtocolError("the end goes back in time")
+        self.time_us = t
+        self.end = how
+
+    # ------------------------------------------------------------- snapshots
+    def snapshot(self, label_us: int) -> None:
+        """Send the values now, to serve the brick's reads from label_us for one tick."""
+        self.channel.send(["snap", label_us, self.values()])

@@ -1,0 +1,231 @@
+"""Starting a brick process on this computer, and making sure nothing of it outlives the run.
+
+A brick is a fresh Python interpreter (`python -I -S -B ev3sim2d/brick/boot.py`)
+with one end of a socket pair, a scratch folder of its own (its working folder,
+HOME and TMPDIR), its console (fds 1 and 2) in a file of that folder, and a
+short fixed environment: nothing of the caller's environment (tokens, the
+hidden variants' location, PYTHONHASHSEED=random) reaches the program.  The
+brick puts itself in its sandbox (ev3sim2d/brick/sandbox.py) before it reads
+the program; the simulator tells it what it may read.
+
+At the end the brick is killed with everything it started: its own PID
+namespace ends with it; where the kernel gives none, the simulator, a child
+subreaper (PR_SET_CHILD_SUBREAPER), inherits the orphans a program left and
+kills them (`kill_orphans`).
+"""
+
+from __future__ import annotations
+
+import compileall
+import ctypes
+import os
+import shutil
+import signal
+import site
+import socket
+import subprocess
+import sys
+import sysconfig
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .protocol import Channel
+
+PACKAGE_DIR = Path(__file__).resolve().parent
+BOOT = PACKAGE_DIR / "brick" / "boot.py"
+PR_SET_CHILD_SUBREAPER = 36
+CONSOLE_FILE = "console.log"
+KEEP_CONSOLE_BYTES = 4000
+UNPRIVILEGED_UID = 65534
+_compiled = False
+
+
+@dataclass
+class BrickLimits:
+    """What one brick may use (its program's CPU time, memory, file sizes, processes)."""
+
+    cpu_s: int = 600
+    memory_mb: int = 1024
+    file_mb: int = 64
+    processes: int = 64
+
+
+@dataclass
+class BrickProcess:
+    """A running brick: its process, the simulator's end of its connection, its scratch folder."""
+
+    popen: subprocess.Popen
+    channel: Channel
+    scratch: Path
+    console: Path
+    exit_code: int | None = None
+    notes: list[str] = field(default_factory=list)
+
+    def stop(self) -> None:
+        """Kill the brick and everything it started, reap it, remove its scratch folder."""
+        self.channel.close()
+        try:
+            os.killpg(self.popen.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError, OSError):
+            pass
+        try:
+            self.popen.kill()
+        except OSError:
+            pass
+        try:
+            self.exit_code = self.popen.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.notes.append("the brick process did not end within 10 s of SIGKILL")
+        kill_orphans()
+        self.console_text = console_tail(self.console)
+        shutil.rmtree(self.scratch, ignore_errors=True)
+
+    def ended_by_signal(self) -> str | None:
+        code = self.popen.returncode
+        if code is not None and code < 0:
+            try:
+                return signal.Signals(-code).name
+            except ValueError:
+                return f"signal {-code}"
+        return None
+
+
+def shim_root() -> Path:
+    """The folder that holds our `ev3dev2` package (installed copy first, then the source tree)."""
+    for root in (PACKAGE_DIR / "_shim", PACKAGE_DIR.parent):
+        if (root / "ev3dev2" / "__init__.py").exists():
+            return root
+    raise RuntimeError(f"ev3sim2d is incomplete: no ev3dev2 shim next to {PACKAGE_DIR}")
+
+
+def site_packages() -> list[str]:
+    """Where this interpreter finds third-party packages (numpy, Pillow), for the brick's sys.path."""
+    found = []
+    for path in [*site.getsitepackages(), site.getusersitepackages(), *sys.path]:
+        if path and path.rstrip("/").endswith("-packages") and os.path.isdir(path) and path not in found:
+            found.append(path)
+    return found
+
+
+def _compile_once() -> None:
+    """Bytecode for the brick's code and the shim, so that no brick compiles them (bricks write none)."""
+    global _compiled
+    if _compiled:
+        return
+    _compiled = True
+    for folder in (PACKAGE_DIR / "brick", PACKAGE_DIR / "protocol", shim_root() / "ev3dev2"):
+        try:
+            compileall.compile_dir(str(folder), quiet=2)
+        except OSError:
+            pass
+    try:
+        compileall.compile_file(str(PACKAGE_DIR / "__init__.py"), quiet=2)
+    except OSError:
+        pass
+
+
+def become_subreaper() -> bool:
+    """Make this process the one that inherits orphans of its descendants (Linux), so it can end them."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _is_subreaper() -> bool:
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        value = ctypes.c_int(0)
+        return libc.prctl(37, ctypes.byref(value), 0, 0, 0) == 0 and value.value == 1
+    except (OSError, AttributeError):
+        return False
+
+
+def kill_orphans() -> int:
+    """As a subreaper: kill and reap every child process no one started on purpose (a brick's orphans).
+
+    Children this process started itself (through subprocess) are left alone."""
+    if not _is_subreaper():
+        return 0
+    me = os.getpid()
+    mine = {p.pid for p in getattr(subprocess, "_active", []) or []}
+    killed = 0
+    try:
+        entries = os.listdir("/proc")
+    except OSError:
+        return 0
+    for entry in entries:
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as f:
+                stat = f.read().decode("latin-1")
+        except OSError:
+            continue
+        fields = stat[stat.rfind(")") + 2 :].split()
+        if len(fields) > 1 and int(fields[1]) == me and int(entry) not in mine:
+            try:
+                os.kill(int(entry), signal.SIGKILL)
+                os.waitpid(int(entry), 0)
+                killed += 1
+            except (ProcessLookupError, ChildProcessError, PermissionError):
+                pass
+    return killed
+
+
+def brick_environment(scratch: Path) -> dict[str, str]:
+    """The whole environment a brick gets: the same on every machine, no secrets of the caller's."""
+    return {
+        "PATH": "/usr/local/bin:/usr/bin:/bin",
+        "HOME": str(scratch),
+        "TMPDIR": str(scratch),
+        "LANG": "C.UTF-8",
+        "LC_ALL": "C.UTF-8",
+        "TZ": "UTC",
+        "PYTHONHASHSEED": "0",
+        "PYTHONIOENCODING": "utf-8",
+        "PYTHONDONTWRITEBYTECODE": "1",
+    }
+
+
+def start_brick(readable: list[Path]) -> tuple[BrickProcess, list[str]]:
+    """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's)."""
+    _compile_once()
+    scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-"))
+    if os.geteuid() == 0:
+        os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes
+    console = scratch / CONSOLE_FILE
+    ours, theirs = socket.socketpair()
+    with open(console, "wb") as out:
+        popen = subprocess.Popen(
+            [sys.executable, "-I", "-S", "-B", str(BOOT), str(theirs.fileno()), str(PACKAGE_DIR.parent)],
+            stdin=subprocess.DEVNULL,
+            stdout=out,
+            stderr=out,
+            cwd=scratch,
+            env=brick_environment(scratch),
+            pass_fds=[theirs.fileno()],
+            start_new_session=True,
+        )
+    theirs.close()
+    read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
+    return BrickProcess(popen, Channel(ours), scratch, console), read_paths
+
+
+def console_tail(path: Path) -> str:
+    """The end of what the brick's interpreter wrote to its console (a crash's message)."""
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            f.seek(max(0, size - KEEP_CONSOLE_BYTES))
+            return f.read().decode("utf-8", "replace").strip()
+    except OSError:
+        return ""
+
+
+def python_paths() -> dict:
+    """Where this interpreter keeps its standard library (for the record)."""
+    return {"stdlib": sysconfig.get_paths().get("stdlib", "")}

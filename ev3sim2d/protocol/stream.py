@@ -1,0 +1,123 @@
+"""Framing: messages as lines of JSON over a stream socket (a socket pair, a Unix socket or TCP).
+
+Waiting for a message first spins for a short while on non-blocking reads (a
+brick and its simulator on one machine answer each other within microseconds,
+far sooner than a process that went to sleep is woken), then blocks.
+"""
+
+from __future__ import annotations
+
+import select
+import socket
+import time
+
+from .messages import MAX_MESSAGE_BYTES, ProtocolError, decode, encode
+
+_perf_counter = time.perf_counter  # the real clock, whatever a program does to `time` later
+_DONTWAIT = getattr(socket, "MSG_DONTWAIT", 0)
+
+
+class Channel:
+    """One end of a connection: send messages, receive them in order."""
+
+    def __init__(self, sock: socket.socket, spin_s: float = 0.0002) -> None:
+        self.sock = sock
+        self.spin_s = spin_s if _DONTWAIT else 0.0
+        self._buffer = bytearray()
+        self._start = 0
+        self.closed = False
+
+    def fileno(self) -> int:
+        return self.sock.fileno()
+
+    # ------------------------------------------------------------------ sending
+    def send(self, message: list) -> None:
+        self.send_bytes(encode(message))
+
+    def send_bytes(self, data: bytes) -> None:
+        try:
+            self.sock.sendall(data)
+        except OSError as err:
+            self.closed = True
+            raise ProtocolError(f"the connection is gone ({err})") from None
+
+    # ---------------------------------------------------------------- receiving
+    def pending(self) -> list | None:
+        """The next message if one has arrived already, else None (never waits)."""
+        message = self._take()
+        if message is not None:
+            return message
+        while self._fill(_DONTWAIT):
+            message = self._take()
+            if message is not None:
+                return message
+        return None
+
+    def receive(self, timeout_s: float | None = None) -> list | None:
+        """The next message, waiting up to timeout_s (None: for ever); None when the time is up."""
+        message = self._take()
+        if message is not None:
+            return message
+        if self.spin_s:
+            end = _perf_counter() + self.spin_s
+            while True:
+                if self._fill(_DONTWAIT):
+                    message = self._take()
+                    if message is not None:
+                        return message
+                elif _perf_counter() > end:
+                    break
+        deadline = None if timeout_s is None else _perf_counter() + timeout_s
+        while True:
+            left = None if deadline is None else deadline - _perf_counter()
+            if left is not None and left <= 0:
+                return None
+            if left is not None:
+                ready, _, _ = select.select([self.sock], [], [], left)
+                if not ready:
+                    return None
+            self._fill(0)
+            message = self._take()
+            if message is not None:
+                return message
+
+    def _fill(self, flags: int) -> bool:
+        """Read what the socket has (waiting for something unless flags say not to); False if nothing."""
+        try:
+            data = self.sock.recv(1 << 16, flags)
+        except BlockingIOError:
+            return False
+        except InterruptedError:
+            return False
+        except OSError as err:
+            self.closed = True
+            raise ProtocolError(f"the connection is gone ({err})") from None
+        if not data:
+            self.closed = True
+            raise ProtocolError("the other side closed the connection")
+        self._buffer += data
+        return True
+
+    def _take(self) -> list | None:
+        buffer = self._buffer
+        end = buffer.find(b"\n", self._start)
+        if end < 0:
+            if len(buffer) - self._start > MAX_MESSAGE_BYTES:
+                raise ProtocolError(f"a message longer than {MAX_MESSAGE_BYTES} bytes")
+            if self._start:
+                del buffer[: self._start]
+                self._start = 0
+            return None
+        line = bytes(buffer[self._start : end])
+        self._start = end + 1
+        if self._start == len(buffer):
+            buffer.clear()
+            self._start = 0
+        return decode(line)
+
+    def close(self) -> None:
+        self.closed = True
+        try:
+            self.sock.close()
+        except OSError:
+            pass

@@ -1,0 +1,186 @@
+"""Bricks and the world in lockstep over virtual time: the simulator's turn-taking.
+
+Each brick runs ahead on its own clock and says when it passes a tick (a tick
+marker).  The world steps to a tick only once every brick still running has
+passed it (conservative lockstep, as in parallel discrete-event simulation),
+and the bricks waiting there get their snapshot.  Between ticks a brick's ops
+touch only its own robot's devices, so the bricks' ops between two ticks can
+be applied brick by brick: the run depends only on what the programs do, never
+on which process was faster.  The simulator never waits for a brick that is
+ahead; a brick that is behind and silent for `hang_after_s` of real time (a
+program spinning without using the robot or the clock) is stopped.
+"""
+
+from __future__ import annotations
+
+import select
+import time
+
+from .brick_port import BrickPort
+from .protocol import ProtocolError
+from .simulation import Simulation
+
+_monotonic = time.monotonic
+_perf_counter = time.perf_counter
+SPIN_S = 0.0002
+BAD_MESSAGE = (ProtocolError, TypeError, ValueError, IndexError, KeyError, AttributeError, OverflowError)
+
+
+class Session:
+    """Runs the world with its bricks until every brick has ended or the time limit."""
+
+    def __init__(
+        self, sim: Simulation, ports: list[BrickPort], limit_us: int | None, hang_after_s: float
+    ) -> None:
+        self.sim = sim
+        self.ports = ports
+        self.limit_us = limit_us
+        self.hang_after_s = hang_after_s
+        self.world_us = 0
+        self.next_tick_us = sim.tick_us
+        self.interrupted = False
+
+    def _step_to(self, target_us: int) -> None:
+        """Run the world's ticks up to target_us; after each, the snapshots bricks will need."""
+        tick = self.sim.tick
+        step = self.sim.tick_us
+        while self.next_tick_us <= target_us:
+            now = self.next_tick_us
+            tick(now)
+            self.next_tick_us += step
+            self.world_us = now
+            self._snapshots(now)
+        self.world_us = target_us
+
+    def _snapshots(self, tick_us: int) -> None:
+        """After the tick at tick_us: a brick in [tick_us, +tick) will read from this snapshot next tick;
+        one that jumped to tick_us + tick (a sleep) needs it at once.  Always taken, sent or not, so that
+        the record never depends on which process was faster."""
+        label = tick_us + self.sim.tick_us
+        for port in self.ports:
+            if not port.finished and port.declared in (tick_us, label):
+                try:
+                    port.snapshot(label)
+                except ProtocolError as err:
+                    self.drop(port, f"gone: {err}")
+
+    def drop(self, port: BrickPort, why: str) -> None:
+        """End a brick's part in the run (it broke the protocol, went away, or hung)."""
+        if not port.finished:
+            port.gone = why
+        try:
+            port.channel.send(["stop", why])
+        except ProtocolError:
+            pass
+
+    def _drain(self, port: BrickPort) -> None:
+        """Apply whatever the brick has sent, as far as the world's time allows."""
+        while True:
+            try:
+                port.run_ops(self.world_us)
+                if port.finished or port.marker is not None:
+                    return
+                message = port.channel.pending()
+                if message is None:
+                    return
+                port.accept(message)
+                port.last_heard = _monotonic()
+            except BAD_MESSAGE as err:
+                self.drop(port, f"protocol: {err}")
+                return
+
+    def run(self) -> None:
+        now = _monotonic()
+        for port in self.ports:
+            port.last_heard = now
+        try:
+            self._snapshots(0)
+            self._run()
+        except KeyboardInterrupt:
+            self.interrupted = True
+            for port in self.ports:
+                self.drop(port, "interrupted")
+        end_us = max((p.time_us for p in self.ports), default=0)
+        if self.limit_us is not None:
+            end_us = min(end_us, self.limit_us)
+        if not self.interrupted:
+            self._step_to(max(end_us, self.world_us))
+
+    def _run(self) -> None:
+        ports = self.ports
+        limit = self.limit_us
+        while True:
+            live = [p for p in ports if not p.finished]
+            for port in live:
+                self._drain(port)
+            live = [p for p in live if not p.finished]
+            if not live:
+                return
+            behind = [p for p in live if p.marker is None]
+            if not behind:
+                target = min(p.marker for p in live)
+                if limit is not None and target >= limit:
+                    self._step_to(limit)
+                    for port in live:
+                        port.time_us = limit
+                        port.end = {"t_us": limit, "status": "time_limit", "error": None}
+                        self.drop(port, "time limit")
+                    return
+                self._step_to(target)
+                for port in live:
+                    if port.marker == target:
+                        port.marker = None
+                continue
+            self._wait(behind)
+
+    def _wait(self, ports: list[BrickPort]) -> None:
+        """Wait until one of these bricks (all behind the world) says something, or stop a silent one."""
+        deadline = min(p.last_heard for p in ports) + self.hang_after_s
+        if len(ports) == 1:
+            port = ports[0]
+            try:
+                message = port.channel.receive(timeout_s=max(0.0, deadline - _monotonic()))
+                if message is not None:
+                    port.accept(message)
+                    port.last_heard = _monotonic()
+            except BAD_MESSAGE as err:
+                self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
+                return
+        else:
+            spin_end = _perf_counter() + SPIN_S
+            heard = False
+            while not heard:
+                for port in ports:
+                    if self._take(port):
+                        heard = True
+                if heard or _perf_counter() > spin_end:
+                    break
+            if not heard:
+                channels = [p.channel for p in ports]
+                ready, _, _ = select.select(channels, [], [], max(0.0, min(0.05, deadline - _monotonic())))
+                for port in ports:
+                    if port.channel in ready:
+                        heard = self._take(port) or heard
+            if heard:
+                return
+        now = _monotonic()
+        for port in ports:
+            if not port.finished and now - port.last_heard >= self.hang_after_s:
+                port.gone = "hung"
+                self.drop(port, "hung")
+
+    def _take(self, port: BrickPort) -> bool:
+        """Queue one message of the brick's if one has arrived; True if something happened."""
+        try:
+            message = port.channel.pending()
+        except BAD_MESSAGE as err:
+            self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
+            return True
+        if message is None:
+            return False
+        try:
+            port.accept(message)
+        except BAD_MESSAGE as err:
+            self.drop(port, f"protocol: {err}")
+        port.last_heard = _monotonic()
+        return True
