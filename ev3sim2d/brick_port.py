@@ -51,6 +51,15 @@ class BrickPort:
         self.last_heard = 0.0
         self.hello: dict | None = None
         self._answers: list = []  # answers to the ops of the batch being applied
+        self.broken = False  # a send failed: the brick is gone once what it sent is applied
+
+    def send(self, message: list) -> None:
+        """Send to the brick; a brick that is gone is noticed when its last messages are applied."""
+        if not self.broken:
+            try:
+                self.channel.send(message)
+            except ProtocolError:
+                self.broken = True
 
     @property
     def finished(self) -> bool:
@@ -99,7 +108,7 @@ class BrickPort:
                 self._answers.append(self._call(op, answer=True))
             elif kind == "q":
                 answers, self._answers = self._answers, []
-                self.channel.send(["reply", answers, self.values()])
+                self.send(["reply", answers, self.values()])
             elif kind == "end":
                 self._finish(op[1])
             else:
@@ -272,4 +281,4 @@ class BrickPort:
     # ------------------------------------------------------------- snapshots
     def snapshot(self, label_us: int) -> None:
         """Send the values now, to serve the brick's reads from label_us for one tick."""
-        self.channel.send(["snap", label_us, self.values()])
+        self.send(["snap", label_us, self.values()])

@@ -1,7 +1,8 @@
 """Starting a brick process on this computer, and making sure nothing of it outlives the run.
 
-A brick is a fresh Python interpreter (`python -I -S -B ev3sim2d/brick/boot.py`)
-with one end of a socket pair, a scratch folder of its own (its working folder,
+A brick is a fresh Python interpreter (`python -s -S -B -P ev3sim2d/brick/boot.py`)
+with one end of a socket pair (and shared memory for the messages, where the
+machine allows: protocol/shared_memory.py), a scratch folder of its own (its working folder,
 HOME and TMPDIR), its console (fds 1 and 2) in a file of that folder, and a
 short fixed environment: nothing of the caller's environment (tokens, the
 hidden variants' location, PYTHONHASHSEED=random) reaches the program.  The
@@ -30,7 +31,9 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .protocol import Channel
+from .protocol import Channel, SharedChannel
+from .protocol.shared_memory import available as shared_memory_available
+from .protocol.shared_memory import create_memory
 
 PACKAGE_DIR = Path(__file__).resolve().parent
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
@@ -39,6 +42,7 @@ CONSOLE_FILE = "console.log"
 KEEP_CONSOLE_BYTES = 4000
 UNPRIVILEGED_UID = 65534
 _compiled = False
+_running: set[int] = set()  # pids of the bricks this process runs now
 
 
 @dataclass
@@ -77,6 +81,7 @@ class BrickProcess:
             self.exit_code = self.popen.wait(timeout=10)
         except subprocess.TimeoutExpired:
             self.notes.append("the brick process did not end within 10 s of SIGKILL")
+        _running.discard(self.popen.pid)
         kill_orphans()
         self.console_text = console_tail(self.console)
         shutil.rmtree(self.scratch, ignore_errors=True)
@@ -143,14 +148,14 @@ def _is_subreaper() -> bool:
         return False
 
 
-def kill_orphans() -> int:
+def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
     """As a subreaper: kill and reap every child process no one started on purpose (a brick's orphans).
 
-    Children this process started itself (through subprocess) are left alone."""
+    Children in `keep`, and bricks still running, are left alone."""
     if not _is_subreaper():
         return 0
     me = os.getpid()
-    mine = {p.pid for p in getattr(subprocess, "_active", []) or []}
+    mine = _running | set(keep)
     killed = 0
     try:
         entries = os.listdir("/proc")
@@ -190,7 +195,7 @@ def brick_environment(scratch: Path) -> dict[str, str]:
     }
 
 
-def start_brick(readable: list[Path]) -> tuple[BrickProcess, list[str]]:
+def start_brick(readable: list[Path], shared_memory: bool = True) -> tuple[BrickProcess, list[str]]:
     """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's)."""
     _compile_once()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-"))
@@ -198,20 +203,29 @@ def start_brick(readable: list[Path]) -> tuple[BrickProcess, list[str]]:
         os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes
     console = scratch / CONSOLE_FILE
     ours, theirs = socket.socketpair()
+    memory_fd = create_memory() if shared_memory and shared_memory_available() else -1
+    passed = [theirs.fileno()] + ([memory_fd] if memory_fd >= 0 else [])
+    argv = [sys.executable, "-s", "-S", "-B", "-P", str(BOOT), str(theirs.fileno()), str(memory_fd)]
     with open(console, "wb") as out:
         popen = subprocess.Popen(
-            [sys.executable, "-I", "-S", "-B", str(BOOT), str(theirs.fileno()), str(PACKAGE_DIR.parent)],
+            [*argv, str(PACKAGE_DIR.parent)],
             stdin=subprocess.DEVNULL,
             stdout=out,
             stderr=out,
             cwd=scratch,
             env=brick_environment(scratch),
-            pass_fds=[theirs.fileno()],
+            pass_fds=passed,
             start_new_session=True,
         )
     theirs.close()
+    _running.add(popen.pid)
+    if memory_fd >= 0:
+        channel = SharedChannel(ours, os.dup(memory_fd), simulator=True)
+        os.close(memory_fd)
+    else:
+        channel = Channel(ours)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
-    return BrickProcess(popen, Channel(ours), scratch, console), read_paths
+    return BrickProcess(popen, channel, scratch, console), read_paths
 
 
 def console_tail(path: Path) -> str:

@@ -13,11 +13,10 @@ program spinning without using the robot or the clock) is stopped.
 
 from __future__ import annotations
 
-import select
 import time
 
 from .brick_port import BrickPort
-from .protocol import ProtocolError
+from .protocol import ProtocolError, wait_for_any
 from .simulation import Simulation
 
 _monotonic = time.monotonic
@@ -59,19 +58,13 @@ class Session:
         label = tick_us + self.sim.tick_us
         for port in self.ports:
             if not port.finished and port.declared in (tick_us, label):
-                try:
-                    port.snapshot(label)
-                except ProtocolError as err:
-                    self.drop(port, f"gone: {err}")
+                port.snapshot(label)
 
     def drop(self, port: BrickPort, why: str) -> None:
         """End a brick's part in the run (it broke the protocol, went away, or hung)."""
         if not port.finished:
             port.gone = why
-        try:
-            port.channel.send(["stop", why])
-        except ProtocolError:
-            pass
+        port.send(["stop", why])
 
     def _drain(self, port: BrickPort) -> None:
         """Apply whatever the brick has sent, as far as the world's time allows."""
@@ -82,11 +75,13 @@ class Session:
                     return
                 message = port.channel.pending()
                 if message is None:
+                    if port.broken:
+                        self.drop(port, "gone: the brick closed the connection")
                     return
                 port.accept(message)
                 port.last_heard = _monotonic()
             except BAD_MESSAGE as err:
-                self.drop(port, f"protocol: {err}")
+                self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
                 return
 
     def run(self) -> None:
@@ -157,7 +152,10 @@ class Session:
                     break
             if not heard:
                 channels = [p.channel for p in ports]
-                ready, _, _ = select.select(channels, [], [], max(0.0, min(0.05, deadline - _monotonic())))
+                try:
+                    ready = wait_for_any(channels, max(0.0, min(0.05, deadline - _monotonic())))
+                except ProtocolError:
+                    ready = [c for c in channels if c.closed]
                 for port in ports:
                     if port.channel in ready:
                         heard = self._take(port) or heard

@@ -1,8 +1,9 @@
 """The brick process's start: connect, load the trusted parts, enter the sandbox, run the program, report.
 
-The simulator starts it as `python -I -S -B boot.py FD ROOT` with a short fixed
-environment: FD is the connection (one end of a socket pair), ROOT the folder
-that holds the `ev3sim2d` package.  Only the standard library, ev3sim2d.brick,
+The simulator starts it as `python -s -S -B -P boot.py FD MEMORY_FD ROOT` with a
+short fixed environment: FD is the connection (one end of a socket pair),
+MEMORY_FD the shared memory of a SharedChannel (-1: the messages go through the
+socket), ROOT the folder that holds the `ev3sim2d` package.  Only the standard library, ev3sim2d.brick,
 ev3sim2d.protocol and the ev3dev2 shim are loaded here: nothing of the world,
 the devices, the lesson or the grader exists in this process.
 
@@ -18,20 +19,23 @@ import os
 import sys
 
 
-def _connect(fd: int):
+def _connect(fd: int, memory_fd: int):
     import socket
 
-    from ev3sim2d.protocol import Channel
+    from ev3sim2d.protocol import Channel, SharedChannel
 
-    return Channel(socket.socket(fileno=fd))
+    sock = socket.socket(fileno=fd)
+    if memory_fd >= 0:
+        return SharedChannel(sock, memory_fd, simulator=False)
+    return Channel(sock)
 
 
 def main(argv: list[str]) -> int:
-    fd, root = int(argv[1]), argv[2]
+    fd, memory_fd, root = int(argv[1]), int(argv[2]), argv[3]
     sys.path.insert(0, root)
     from ev3sim2d.protocol import PROTOCOL, ProtocolError
 
-    channel = _connect(fd)
+    channel = _connect(fd, memory_fd)
     try:
         welcome = channel.receive(timeout_s=120)
     except ProtocolError:

@@ -10,13 +10,15 @@ which, and carries the program's error if it had one.
 from __future__ import annotations
 
 import importlib
-import threading
+import time
 
 from ..protocol import ProtocolError
 from .environment import BrickEnvironment, _real_start_new_thread
 from .link import BrickLink
 from .program import Program, ending, error_report
 from .scheduler import Scheduler
+
+_monotonic = time.monotonic  # the real clock (the program's is virtual)
 
 SHIM_MODULES = (
     "ev3dev2",
@@ -82,11 +84,13 @@ class BrickRun:
             self.channel.send(["end", how])
         except ProtocolError:
             pass
-        # wait until the simulator has read everything (it closes the connection), but not for ever
+        # wait until the simulator has read everything (it says stop or closes), but not for ever
+        end = _monotonic() + 5.0
         try:
-            self.channel.receive(timeout_s=5.0)
+            while True:
+                message = self.channel.receive(timeout_s=max(0.0, end - _monotonic()))
+                if message is None or message[0] == "stop":
+                    return
         except ProtocolError:
             pass
 
-
-__all__ = ["BrickRun", "threading"]

@@ -1,16 +1,20 @@
-"""One student's program in one variant, run and scored in a process of its own that nothing it does can escape.
+"""One student's program in one variant, run and scored by a simulator process of its own.
 
 The parent (`grader.py`) starts a worker per submission and variant: forked
 from the grader where the system can fork (fast: the lesson and its worlds are
 already loaded), else a fresh `python -m ev3sim2d.grading.worker JOB.json`.  The worker
-- gets a process group of its own (so the parent can end it and anything it starts),
-- sends the console (fds 1 and 2) to a file in its job folder and runs in an empty folder,
-- limits itself: CPU time (SIGXCPU), address space (MemoryError), size of files it
-  writes (SIGXFSZ: output that never ends), no core dumps,
-- runs `run_programs`, scores the run with the lesson's checks (which read only the
-  trace and the world), and writes `result.json` (the variant's result), and, when the
-  parent asks for failed runs' traces, `trace.npz`; then ends with os._exit.
-The parent kills the group at the wall-clock limit, and reads whatever is left:
+is a simulator: it never runs the student's code itself.  It
+- gets a process group of its own (so the parent can end it), and is a child
+  subreaper, so that nothing the brick starts can outlive the run,
+- sends the console (fds 1 and 2) to a file in its job folder,
+- runs `run_programs`, which runs the program in a sandboxed brick process with the
+  lesson's limits (CPU time, memory, file sizes, processes) and may read only the
+  submission (file or folder) besides Python itself,
+- scores the run with the lesson's checks (which read only the simulator's trace and
+  the world), and writes `result.json` (the variant's result), and, when the parent
+  asks for failed runs' traces, `trace.npz`; then ends with os._exit.
+The job folder, the lesson and the hidden variants are out of the brick's reach.
+The parent kills the worker at the wall-clock limit, and reads whatever is left:
 `collect()` turns it into a `JobOutcome` (the variant's result, or why there is none).
 """
 
@@ -28,6 +32,7 @@ import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
+from ..brick_process import become_subreaper, kill_orphans
 from .result import VariantResult
 
 RESULT_FILE = "result.json"
@@ -67,6 +72,7 @@ class Job:
     memory_mb: float
     output_mb: float
     keep_trace: bool = False  # write trace.npz when a check fails
+    readable: str = ""  # the submission (file or folder): all the brick may read besides Python
 
 
 @dataclass
@@ -101,33 +107,13 @@ def _limit(which: int, soft: int, hard: int | None = None) -> None:
         pass  # a limit the system will not set: the parent's wall-clock limit still holds
 
 
-def _address_space_now() -> int | None:
-    """This process's virtual memory size in bytes (Linux), None elsewhere."""
-    try:
-        with open("/proc/self/status") as status:
-            for line in status:
-                if line.startswith("VmSize:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        return None
-    return None
-
-
 def _set_limits(job: Job) -> None:
+    """The worker's own limits (the student's program has its brick's): no core dumps."""
     try:
         import resource
     except ImportError:  # Windows: only the parent's wall-clock limit
         return
-    # Python ignores SIGXFSZ; a program that writes too much should end, not loop on write errors
-    if hasattr(signal, "SIGXFSZ"):
-        signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
-    cpu = max(1, int(job.cpu_s))
-    _limit(resource.RLIMIT_CPU, cpu, cpu + 2)
-    _limit(resource.RLIMIT_FSIZE, int(job.output_mb * 2**20))
     _limit(resource.RLIMIT_CORE, 0)
-    now = _address_space_now()
-    if now is not None:
-        _limit(resource.RLIMIT_AS, now + int(job.memory_mb * 2**20))
 
 
 def _redirect_console(folder: Path) -> None:
@@ -164,9 +150,7 @@ def run_job(job: Job, lesson) -> None:
     folder = Path(job.folder)
     try:
         _redirect_console(folder)
-        sandbox = folder / "cwd"
-        sandbox.mkdir(exist_ok=True)
-        os.chdir(sandbox)
+        become_subreaper()
         _set_limits(job)
         code = _run_and_score(job, lesson, folder)
     except MemoryError:
@@ -187,6 +171,7 @@ def run_job(job: Job, lesson) -> None:
 
 
 def _run_and_score(job: Job, lesson, folder: Path) -> int:
+    from ..brick_process import BrickLimits
     from ..program import ProgramError
     from ..run import run_programs
     from .run_record import RunRecord
@@ -194,12 +179,33 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
 
     variant = lesson.variants[job.variant]
     world = variant.world()
+    limits = BrickLimits(
+        cpu_s=max(1, int(job.cpu_s)), memory_mb=int(job.memory_mb), file_mb=max(1, int(job.output_mb))
+    )
+    readable = [[Path(job.readable or Path(job.entry).parent)]]
     try:
-        result = run_programs([job.entry], world, None, job.time_s, job.seed, job.hang_s, echo=None)
+        result = run_programs(
+            [job.entry], world, None, job.time_s, job.seed, job.hang_s, None, None, readable, limits
+        )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})
         return 0
-    out_of_memory = result.error is not None and result.error.get("type") == "MemoryError"
+    finally:
+        kill_orphans()
+    if result.limit in ("cpu", "output"):
+        what = {
+            "cpu": ("timeout", f"the program used more than {job.cpu_s:g} s of CPU time, so it was stopped"),
+            "output": (
+                "output",
+                f"the program wrote more than {job.output_mb:g} MB, so it was stopped (output that never ends?)",
+            ),
+        }[result.limit]
+        _write_json(folder / RESULT_FILE, {"outcome": what[0], "message": what[1]})
+        return 0
+    if result.status == "crashed" and result.limit is None:
+        _write_json(folder / RESULT_FILE, {"outcome": "crashed", "message": result.reason})
+        return 0
+    out_of_memory = result.limit == "memory"
     record = RunRecord(result.trace, world, variant.time_s)
     try:
         scored = score_run(lesson, job.variant, record, out_of_memory)
@@ -344,8 +350,8 @@ def collect(running: RunningJob) -> JobOutcome:
             info = json.loads(result_path.read_text(encoding="utf-8"))
         except (OSError, ValueError):
             info = None
-        if isinstance(info, dict) and info.get("outcome") == "error":
-            return JobOutcome("error", str(info.get("message", "")), wall_s=wall)
+        if isinstance(info, dict) and info.get("outcome") in ("error", "timeout", "output", "crashed"):
+            return JobOutcome(info["outcome"], str(info.get("message", "")), wall_s=wall)
         if isinstance(info, dict) and info.get("outcome") in ("ran", "memory"):
             try:
                 variant = VariantResult.from_dict(info["variant"])

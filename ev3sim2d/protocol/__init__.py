@@ -4,6 +4,7 @@ Shared by both sides; imports nothing else of ev3sim2d.  docs/protocol.md is wri
 """
 
 from .messages import PROTOCOL, ProtocolError, decode, encode
-from .stream import Channel
+from .shared_memory import SharedChannel
+from .stream import Channel, wait_for_any
 
-__all__ = ["PROTOCOL", "ProtocolError", "Channel", "decode", "encode"]
+__all__ = ["PROTOCOL", "ProtocolError", "Channel", "SharedChannel", "decode", "encode", "wait_for_any"]

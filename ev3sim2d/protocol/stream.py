@@ -115,9 +115,40 @@ class Channel:
             self._start = 0
         return decode(line)
 
+    # ------------------------------------------------------ waiting on several
+    def data_waiting(self) -> bool:
+        """Whether a whole message is here already (without reading the socket)."""
+        return self._buffer.find(b"\n", self._start) >= 0
+
+    def asleep(self, flag: bool) -> None:
+        """A channel whose data does not come through the socket is told its reader blocks on it."""
+
+    def take_wakeups(self) -> None:
+        """After select: nothing to do here (the data itself is on the socket)."""
+
     def close(self) -> None:
         self.closed = True
         try:
             self.sock.close()
         except OSError:
             pass
+
+
+def wait_for_any(channels: list[Channel], timeout_s: float) -> list[Channel]:
+    """Block until one of the channels may have something (or timeout_s); those that may."""
+    waiting = [c for c in channels if c.data_waiting()]
+    if waiting:
+        return waiting
+    for channel in channels:
+        channel.asleep(True)
+    try:
+        waiting = [c for c in channels if c.data_waiting()]
+        if waiting:
+            return waiting
+        ready, _, _ = select.select(channels, [], [], timeout_s)
+        for channel in ready:
+            channel.take_wakeups()
+        return [c for c in channels if c in ready or c.data_waiting()]
+    finally:
+        for channel in channels:
+            channel.asleep(False)
