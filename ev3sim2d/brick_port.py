@@ -30,7 +30,8 @@ class NoButtonPress(RuntimeError):
 class BrickPort:
     """One brick as the simulator sees it: a robot, a connection, a queue of ops."""
 
-    def __init__(self, index: int, robot, channel, trace, presses: list, echo=None) -> None:
+    def __init__(self, index: int, robot, channel, trace, presses: list, echo: list | None = None) -> None:
+        """echo: a list that printed lines are added to, for the session to show in time order."""
         self.index = index
         self.robot = robot
         self.brick: Brick = robot.brick
@@ -179,7 +180,10 @@ class BrickPort:
             return [err.errno or errno.EIO, err.strerror or str(err)]
         if device.sysfs_class == "leds":
             self.trace.add_event(
-                self.time_us / 1e6, self.index, "leds", {n: led.brightness for n, led in self.brick.leds.items()}
+                self.time_us / 1e6,
+                self.index,
+                "leds",
+                {n: led.brightness for n, led in self.brick.leds.items()},
             )
         return None
 
@@ -215,7 +219,7 @@ class BrickPort:
         line = OutputLine(self.time_us / 1e6, self.index, stream, text)
         self.trace.add_output(line)
         if self.echo is not None:
-            self.echo(line)
+            self.echo.append(line)
 
     def _call(self, op: list, answer: bool):
         if len(op) != 4 or type(op[2]) is not str or type(op[3]) is not list:

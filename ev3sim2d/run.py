@@ -92,6 +92,7 @@ def run_programs(
     limits = limits or BrickLimits()
     bricks: list[BrickProcess] = []
     ports: list[BrickPort] = []
+    printed: list = []
     session = None
     wall = 0.0
     try:
@@ -122,10 +123,10 @@ def run_programs(
                 else None,
             }
             brick.channel.send(["welcome", config])
-            ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, echo))
+            ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
         for port in ports:
             _await_hello(port)
-        session = Session(sim, ports, limit_us, hang_after_s)
+        session = Session(sim, ports, limit_us, hang_after_s, printed, echo)
         wall_start = _real_perf_counter()
         session.run()
         wall = _real_perf_counter() - wall_start
@@ -222,7 +223,9 @@ def _result(sim, programs, ports, bricks, wall, session) -> RunResult:
         elif port.gone == "interrupted" and status is None:
             status, reason = "interrupted", f"interrupted at {t:.2f} s"
         elif port.gone is not None and port.gone != "time limit" and status is None:
-            what, limit = _crash(port, brick) if port.gone.startswith(("gone", "start")) else (port.gone, None)
+            what, limit = (
+                _crash(port, brick) if port.gone.startswith(("gone", "start")) else (port.gone, None)
+            )
             if limit == "cpu":
                 what = "the program used more CPU time than it may"
             elif limit == "output":

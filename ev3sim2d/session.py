@@ -16,7 +16,7 @@ from __future__ import annotations
 import time
 
 from .brick_port import BrickPort
-from .protocol import ProtocolError, wait_for_any
+from .protocol import ConnectionGone, ProtocolError, wait_for_any
 from .simulation import Simulation
 
 _monotonic = time.monotonic
@@ -25,12 +25,25 @@ SPIN_S = 0.0002
 BAD_MESSAGE = (ProtocolError, TypeError, ValueError, IndexError, KeyError, AttributeError, OverflowError)
 
 
+def _why(err: Exception) -> str:
+    return f"gone: {err}" if isinstance(err, ConnectionGone) else f"protocol: {err}"
+
+
 class Session:
     """Runs the world with its bricks until every brick has ended or the time limit."""
 
     def __init__(
-        self, sim: Simulation, ports: list[BrickPort], limit_us: int | None, hang_after_s: float
+        self,
+        sim: Simulation,
+        ports: list[BrickPort],
+        limit_us: int | None,
+        hang_after_s: float,
+        printed: list | None = None,
+        echo=None,
     ) -> None:
+        """printed: the list the ports add printed lines to; echo(line) shows them, in time order."""
+        self.printed = printed if printed is not None else []
+        self.echo = echo
         self.sim = sim
         self.ports = ports
         self.limit_us = limit_us
@@ -50,6 +63,23 @@ class Session:
             self.world_us = now
             self._snapshots(now)
         self.world_us = target_us
+        if self.printed:
+            self._echo(target_us)
+
+    def _echo(self, until_us: int | None) -> None:
+        """Show the printed lines up to until_us (all: None) in time order, robot by robot."""
+        lines = self.printed
+        limit = None if until_us is None else until_us / 1e6
+        lines.sort(key=lambda line: (line.t_s, line.robot))
+        cut = (
+            len(lines)
+            if limit is None
+            else next((i for i, x in enumerate(lines) if x.t_s > limit), len(lines))
+        )
+        shown, self.printed[:] = lines[:cut], lines[cut:]
+        if self.echo is not None:
+            for line in shown:
+                self.echo(line)
 
     def _snapshots(self, tick_us: int) -> None:
         """After the tick at tick_us: a brick in [tick_us, +tick) will read from this snapshot next tick;
@@ -81,7 +111,7 @@ class Session:
                 port.accept(message)
                 port.last_heard = _monotonic()
             except BAD_MESSAGE as err:
-                self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
+                self.drop(port, _why(err))
                 return
 
     def run(self) -> None:
@@ -100,6 +130,7 @@ class Session:
             end_us = min(end_us, self.limit_us)
         if not self.interrupted:
             self._step_to(max(end_us, self.world_us))
+        self._echo(None)
 
     def _run(self) -> None:
         ports = self.ports
@@ -139,7 +170,7 @@ class Session:
                     port.accept(message)
                     port.last_heard = _monotonic()
             except BAD_MESSAGE as err:
-                self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
+                self.drop(port, _why(err))
                 return
         else:
             spin_end = _perf_counter() + SPIN_S
@@ -172,7 +203,7 @@ class Session:
         try:
             message = port.channel.pending()
         except BAD_MESSAGE as err:
-            self.drop(port, f"gone: {err}" if port.channel.closed else f"protocol: {err}")
+            self.drop(port, _why(err))
             return True
         if message is None:
             return False

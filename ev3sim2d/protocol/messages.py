@@ -4,30 +4,38 @@ A brick (the student's program, its threads, the ev3dev2 shim and the brick's
 virtual clock) and the simulator (the world, the devices, the trace) talk in
 lockstep over virtual time, counted in whole microseconds.  The brick runs
 ahead on its own clock; it tells the simulator what it did, in order, and asks
-only when it needs an answer.  See docs/protocol.md for the full description.
+only when it needs an answer.  docs/protocol.md describes it in full.
 
 Simulator -> brick
-    ["welcome", {config}]             once, first: protocol, robot, tick_us, limit_us, seed, program...
-    ["snap", tick_us, [values]]       the subscribed attributes' values once the world reached tick_us
-    ["reply", [answers], [values]]    answers to a batch's requests, and every subscribed value now
-    ["stop", reason]                  the run is over (the simulator ended it)
+    ["welcome", {config}]             first: protocol, robot, tick_us, limit_us, seed, program, sandbox
+    ["snap", label_us, [values]]      the live attributes' values for the brick's reads while its clock
+                                      is in [label_us, label_us + tick_us): taken after the world's tick
+                                      at label_us - tick_us
+    ["reply", [answers], [values]]    answers to a batch's requests, in order, and every live value now
+    ["stop", reason]                  the run is over for this brick (time limit, broken rule, hang)
 
 Brick -> simulator
-    ["hello", {info}]                 once, first: protocol, sandbox report
+    ["hello", {info}]                 first: protocol, the sandbox it got (layer -> "on" / "off: why")
     ["ops", [op, ...]]                what the program did, in order (below)
     ["end", {how}]                    the program ended: t_us, status, error
 
 Ops (inside "ops")
-    ["k", key, class, device, attribute]   names an attribute: later ops use the integer key
-    ["w", key, value]                      write (value: text); ["w", key, value, t_us] when its time matters
-    ["t", tick_us]                         the brick's clock passed this tick: the world may step to it
-    ["r", key]                             read (answered in the reply; subscribes the key to snapshots)
-    ["c", t_us, feature, [args]]           a brick feature (sound, display, buttons, devices), answered
+    ["k", key, class, device, attribute]   names an attribute; keys are 0, 1, 2, ... in order
+    ["w", key, value]                      write, checked by the brick against the attribute's rule;
+                                           ["w", key, value, t_us] when its time is recorded (LEDs)
+    ["W", key, value]                      write, answered [error or null, the attribute's write rule]
+    ["t", tick_us]                         the brick's clock passed this tick (the last of several)
+    ["R", key]                             read, answered [kind, value]; kind "constant", "setting"
+                                           (changes only when the program writes the device) or
+                                           "live" (from now on in every snapshot and reply)
+    ["c", t_us, feature, [args]]           a brick feature (sound, display), not answered
+    ["C", t_us, feature, [args]]           a brick feature (buttons, devices, volume), answered
     ["p", t_us, stream, text]              a printed line
     ["q"]                                  end of a batch that wants a reply
 
-Values are text; a read that fails is [errno, message] instead.  An answer to a
-call is any JSON value, or {"error": [kind, message]}.
+Values are text; a read that fails is [errno, message] instead.  A write rule is
+["int", low, high] (null: no bound), ["choice", [texts]], ["any"] or null (ask
+every time).  An answer to a call is any JSON value, or {"error": [kind, message]}.
 """
 
 from __future__ import annotations
@@ -43,6 +51,10 @@ _loads = json.loads
 
 class ProtocolError(Exception):
     """The other side sent something that is not this protocol (or went away)."""
+
+
+class ConnectionGone(ProtocolError):
+    """The other side closed the connection, or its process ended."""
 
 
 def encode(message: list) -> bytes:

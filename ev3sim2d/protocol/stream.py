@@ -11,7 +11,7 @@ import select
 import socket
 import time
 
-from .messages import MAX_MESSAGE_BYTES, ProtocolError, decode, encode
+from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode, encode
 
 _perf_counter = time.perf_counter  # the real clock, whatever a program does to `time` later
 _DONTWAIT = getattr(socket, "MSG_DONTWAIT", 0)
@@ -39,7 +39,7 @@ class Channel:
             self.sock.sendall(data)
         except OSError as err:
             self.closed = True
-            raise ProtocolError(f"the connection is gone ({err})") from None
+            raise ConnectionGone(f"the connection is gone ({err})") from None
 
     # ---------------------------------------------------------------- receiving
     def pending(self) -> list | None:
@@ -91,10 +91,10 @@ class Channel:
             return False
         except OSError as err:
             self.closed = True
-            raise ProtocolError(f"the connection is gone ({err})") from None
+            raise ConnectionGone(f"the connection is gone ({err})") from None
         if not data:
             self.closed = True
-            raise ProtocolError("the other side closed the connection")
+            raise ConnectionGone("the other side closed the connection")
         self._buffer += data
         return True
 

@@ -1,0 +1,117 @@
+"""The brick protocol's framing: lines of JSON over a socket pair, or through shared memory."""
+
+import os
+import socket
+
+import pytest
+
+from ev3sim2d.protocol import Channel, ProtocolError, SharedChannel, decode, encode, wait_for_any
+from ev3sim2d.protocol.shared_memory import RING_BYTES, available, create_memory
+
+
+def socket_pair():
+    a, b = socket.socketpair()
+    return Channel(a), Channel(b)
+
+
+def shared_pair():
+    a, b = socket.socketpair()
+    fd = create_memory()
+    pair = SharedChannel(a, os.dup(fd), simulator=True), SharedChannel(b, os.dup(fd), simulator=False)
+    os.close(fd)
+    return pair
+
+
+KINDS = [socket_pair] + ([shared_pair] if available() else [])
+
+
+@pytest.mark.parametrize("make", KINDS)
+def test_messages_arrive_whole_and_in_order_whatever_they_hold(make):
+    sim, brick = make()
+    messages = [
+        ["ops", [["k", 0, "tacho-motor", "motor0", "speed_sp"], ["w", 0, "300"], ["t", 10000]]],
+        ["p", 5, "stdout", "a line\nwith a newline, ünïcödé and \u2028"],
+        ["snap", 20000, ["40", [2, "No such file"]]],
+    ]
+    for m in messages:
+        brick.send(m)
+    assert [sim.receive(timeout_s=5) for _ in messages] == messages
+
+
+@pytest.mark.parametrize("make", KINDS)
+def test_a_message_larger_than_the_shared_ring_gets_through(make):
+    sim, brick = make()
+    big = ["c", 0, "display", ["ab" * (RING_BYTES // 2 + 12345)]]
+    pid = os.fork()
+    if pid == 0:  # the brick side, in a process of its own as in a run
+        try:
+            brick.send(big)
+            brick.send(["end", {}])
+        finally:
+            os._exit(0)
+    assert sim.receive(timeout_s=10) == big
+    assert sim.receive(timeout_s=10) == ["end", {}]
+    os.waitpid(pid, 0)
+
+
+@pytest.mark.parametrize("make", KINDS)
+def test_the_other_side_going_away_is_noticed(make):
+    sim, brick = make()
+    brick.send(["hello", {}])
+    brick.close()
+    assert sim.receive(timeout_s=5) == ["hello", {}]
+    with pytest.raises(ProtocolError):
+        sim.receive(timeout_s=5)
+
+
+@pytest.mark.parametrize("make", KINDS)
+def test_receive_times_out(make):
+    sim, _brick = make()
+    assert sim.receive(timeout_s=0.05) is None
+    assert sim.pending() is None
+
+
+@pytest.mark.parametrize("bad", [b"not json\n", b'{"a": 1}\n', b"[]\n", b"[1, 2]\n", b"[" * 100000 + b"\n"])
+def test_anything_but_a_message_is_a_protocol_error(bad):
+    a, b = socket.socketpair()
+    sim = Channel(a)
+    b.sendall(bad)
+    with pytest.raises(ProtocolError):
+        sim.receive(timeout_s=5)
+
+
+def test_a_line_that_never_ends_is_cut_off():
+    a, b = socket.socketpair()
+    sim = Channel(a)
+    b.setblocking(False)
+    chunk = b"x" * 65536
+    with pytest.raises(ProtocolError, match="longer than"):
+        for _ in range(200):
+            try:
+                b.send(chunk)
+            except BlockingIOError:
+                pass
+            sim.pending()
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_impossible_ring_positions_written_by_the_other_side_are_refused():
+    sim, brick = shared_pair()
+    words = memoryview(brick.memory).cast("Q")
+    words[sim._in[0]] = 2**40  # the brick claims to have written a terabyte
+    with pytest.raises(ProtocolError, match="impossible"):
+        sim.pending()
+    words.release()
+
+
+def test_wait_for_any_says_which_channel_has_something():
+    pairs = [socket_pair() for _ in range(3)]
+    pairs[1][1].send(["ops", []])
+    ready = wait_for_any([p[0] for p in pairs], 2.0)
+    assert ready == [pairs[1][0]]
+    assert wait_for_any([pairs[0][0]], 0.05) == []
+
+
+def test_encode_and_decode_are_each_others_inverse():
+    message = ["reply", [None, ["int", -1050, 1050]], ["40"]]
+    assert decode(encode(message)[:-1]) == message
