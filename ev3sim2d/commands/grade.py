@@ -47,7 +47,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--csv", metavar="FILE", help="write one CSV row per submission, for the class list")
     parser.add_argument(
-        "--videos", metavar="DIR", help="keep a video (or the trace and a picture) of each failed variant"
+        "--videos",
+        metavar="DIR",
+        help="keep a video (or the trace and a picture) of each failed visible variant",
+    )
+    parser.add_argument(
+        "--hidden-videos",
+        action="store_true",
+        help="with --videos: hidden variants' videos too, named by variant (for the teacher's eyes only: "
+        "they show the hidden worlds)",
+    )
+    parser.add_argument(
+        "--hidden",
+        metavar="DIR",
+        help="the lesson's hidden variants from a teacher's private copy: a folder holding hidden.yaml and "
+        "its worlds, or one holding LESSON_ID/hidden.yaml (default: the lesson's own hidden/ folder, if any)",
     )
     parser.add_argument(
         "--entry",
@@ -72,10 +86,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def main(args) -> int:
     if args.jobs is not None and args.jobs < 1:
         return fail("--jobs must be at least 1")
+    if args.hidden_videos and not args.videos:
+        return fail("--hidden-videos needs --videos DIR")
     try:
-        lesson = load_lesson(args.lesson)
+        lesson = load_lesson(args.lesson, hidden=args.hidden)
     except WorldFileError as err:
         return fail(str(err))
+    if not lesson.hidden_variants() and not args.quiet:
+        print(
+            f"ev3sim2d: {lesson.id} has no hidden variants here: grading its visible variants only "
+            "(a teacher adds the hidden ones with --hidden DIR)",
+            file=sys.stderr,
+        )
     submissions = find_submissions(args.programs, args.entry)
     if not submissions:
         return fail("no programs to grade")
@@ -98,9 +120,12 @@ def main(args) -> int:
 
         def on_failed_run(submission, variant_index, trace_path) -> None:
             # videos are made once grading is over: no rendering threads while workers are forked
+            variant = lesson.variants[variant_index]
+            if variant.hidden and not args.hidden_videos:
+                return  # a video would show the hidden world
             kept = holding / f"{len(failed_runs)}.npz"
             shutil.copyfile(trace_path, kept)
-            failed_runs.append((submission.name, lesson.variants[variant_index].name, kept))
+            failed_runs.append((submission.name, variant.name, kept))
 
     try:
         grading = grade(lesson, submissions, args.jobs, args.json, args.regrade, progress, on_failed_run)

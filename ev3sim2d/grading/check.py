@@ -6,7 +6,12 @@ registry of built-in kinds (the modules in `checks/`), and a lesson may define
 more in `check_*.py` files next to its lesson.yaml.  A check reads only the
 run's record (trace and world, `RunRecord`) and answers with an `Outcome`: passed
 or not, and a sentence a student understands, with the simulated time of what
-decided it.
+decided it, and the same without numbers (`brief`) for hidden variants.
+
+A check is either one of the lesson's goal checks (`goal: true`: the task itself)
+or a secondary one (stopped, no wall contact, finished, ...), which counts only once
+every goal check of the variant passes (see scoring.py).  A kind that a robot
+standing still passes (`PASSES_WITHOUT_MOVING`) cannot be a goal.
 """
 
 from __future__ import annotations
@@ -22,16 +27,22 @@ from ..world.yaml_source import Node
 from .run_record import RunRecord
 
 REQUIRED: Any = object()
-COMMON_KEYS = ("kind", "name", "points")
+COMMON_KEYS = ("kind", "name", "points", "goal")
 
 
 @dataclass(frozen=True)
 class Outcome:
-    """What a check found: passed or not, why (one sentence), and when (simulated seconds), if anything decided it."""
+    """What a check found: passed or not, why (one sentence), and when (simulated seconds), if anything decided it.
+
+    `brief` is the sentence without numbers (no distances, positions or times), shown for hidden variants
+    instead of `message`, so that their results do not give their worlds away; by default "passed" or
+    "did not pass" with the check's summary.
+    """
 
     passed: bool
     message: str
     t_s: float | None = None
+    brief: str | None = None
 
 
 @dataclass(frozen=True)
@@ -118,22 +129,40 @@ class Check:
     KIND: ClassVar[str] = ""
     SUMMARY: ClassVar[str] = ""
     PARAMS: ClassVar[tuple[Param, ...]] = ()
+    PASSES_WITHOUT_MOVING: ClassVar[bool] = False  # a robot that never moves passes it: never a goal
 
     def __init__(
-        self, name: str, points: float, values: dict[str, Any], nodes: dict[str, Node] | None = None
+        self,
+        name: str,
+        points: float,
+        values: dict[str, Any],
+        nodes: dict[str, Node] | None = None,
+        goal: bool = False,
     ):
         self.name = name
         self.points = points
+        self.goal = goal  # a goal check: the others count only once every goal check passes
         self.values = values
         self.nodes = nodes or {}  # where each parameter was written, for errors found later
         for key, value in values.items():
             setattr(self, key, value)
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}({self.name!r}, {self.points:g} points, {self.values})"
+        goal = ", goal" if self.goal else ""
+        return f"{type(self).__name__}({self.name!r}, {self.points:g} points{goal}, {self.values})"
+
+    def passes_without_moving(self) -> bool:
+        """Whether a robot that stands still where it starts passes this check (then it cannot be a goal)."""
+        return self.PASSES_WITHOUT_MOVING
+
+    def brief_of(self, outcome: Outcome) -> str:
+        """The outcome's sentence without numbers, for hidden variants."""
+        if outcome.brief:
+            return outcome.brief
+        return "passed" if outcome.passed else f"did not pass ({self.SUMMARY or self.KIND})"
 
     @classmethod
-    def build(cls, name: str | None = None, points: float = 1, **values: Any) -> Check:
+    def build(cls, name: str | None = None, points: float = 1, goal: bool = False, **values: Any) -> Check:
         """A check made in code (tests, custom checks): parameters by keyword, defaults filled in."""
         known = {p.name: p for p in cls.PARAMS}
         for key in values:
@@ -147,7 +176,7 @@ class Check:
                 raise TypeError(f"{cls.KIND} needs the parameter {param.name!r}")
             else:
                 full[param.name] = param.default
-        return cls(name or cls.KIND, points, full)
+        return cls(name or cls.KIND, points, full, goal=goal)
 
     def validate(self, world: World, variant: str) -> None:
         """Refuse parameters the world cannot answer (a region it does not have); called for every variant."""
@@ -182,6 +211,9 @@ def register(cls: type[Check]) -> type[Check]:
     """Class decorator: make a check kind known by its KIND."""
     if not cls.KIND:
         raise ValueError(f"{cls.__name__} has no KIND")
+    common = [p.name for p in cls.PARAMS if p.name in COMMON_KEYS]
+    if common:
+        raise ValueError(f"{cls.__name__} has a parameter named {common[0]!r}, a key of every check")
     if cls.KIND in CHECKS and CHECKS[cls.KIND] is not cls:
         raise ValueError(f"two check kinds named {cls.KIND!r}")
     CHECKS[cls.KIND] = cls
@@ -197,7 +229,7 @@ def builtin_checks() -> dict[str, type[Check]]:
 
 def check_from_node(node: Node, kinds: dict[str, type[Check]], index: int) -> Check:
     """One check from its YAML mapping (`kind`, `name`, `points` and the kind's parameters)."""
-    example = "- {kind: reach_region, region: goal, points: 5}"
+    example = "- {kind: reach_region, region: goal, goal: true, points: 5}"
     if not node.is_mapping:
         raise node.error(f"each check is a mapping like `{example}`, got {node.describe()}")
     fields = node.as_fields("check", None, example)
@@ -215,6 +247,7 @@ def check_from_node(node: Node, kinds: dict[str, type[Check]], index: int) -> Ch
     points = fields.number("points", default=1.0, example="points: 2")
     if points < 0:
         raise fields.get("points").error(f"'points' cannot be negative, got {points:g}")
+    goal = fields.boolean("goal", default=False)
     values: dict[str, Any] = {}
     nodes: dict[str, Node] = {}
     for param in cls.PARAMS:
@@ -229,11 +262,18 @@ def check_from_node(node: Node, kinds: dict[str, type[Check]], index: int) -> Ch
             continue
         values[param.name] = param.value_of(value_node)
         nodes[param.name] = value_node
-    return cls(name, points, values, nodes)
+    check = cls(name, points, values, nodes, goal=goal)
+    if goal and check.passes_without_moving():
+        raise fields.get("goal").error(
+            f"check '{name}' ({kind}) passes for a robot that never moves, so it cannot be a goal: "
+            "mark the check of the task itself (reaching a place, a distance, a lap ...) `goal: true`, "
+            "and leave this one a secondary check that counts once the goal is met"
+        )
+    return check
 
 
 def checks_from_node(node: Node, kinds: dict[str, type[Check]]) -> list[Check]:
-    """The `checks:` list of a lesson; names must be unique."""
+    """The `checks:` list of a lesson; names must be unique, and at least one check must be a goal."""
     items = node.as_list("checks", "checks: [{kind: reach_region, region: goal, points: 5}]")
     if not items:
         raise node.error("a lesson needs at least one check; e.g. `- {kind: reach_region, region: goal}`")
@@ -249,6 +289,12 @@ def checks_from_node(node: Node, kinds: dict[str, type[Check]]) -> list[Check]:
             )
         seen[check.name] = item
         result.append(check)
+    if not any(check.goal for check in result):
+        raise node.error(
+            "no check is the lesson's goal: mark the check(s) of the task itself `goal: true`, e.g. "
+            "`- {kind: reach_region, region: goal, goal: true, points: 5}`; the other checks (stopped, "
+            "no wall contact, finished ...) count only once every goal check passes"
+        )
     return result
 
 

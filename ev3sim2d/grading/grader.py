@@ -23,10 +23,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .lesson import Lesson
+from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
 from .submission import Submission
+from .variant import Variant
 from .worker import Job, JobOutcome, RunningJob, collect, start_job
 
 POLL_S = 0.01
@@ -91,9 +92,16 @@ def results_document(lesson: Lesson, results: list[SubmissionResult]) -> dict:
         "lesson": lesson.id,
         "title": lesson.title,
         "max_score": lesson.max_score,
-        "variants": [{"name": v.name, "hidden": v.hidden, "world": v.world().name} for v in lesson.variants],
+        "variants": [_variant_entry(v) for v in lesson.variants],
         "submissions": [r.to_dict() for r in results],
     }
+
+
+def _variant_entry(variant: Variant) -> dict:
+    """A variant in the results file: a hidden one only by its number, never its name or world."""
+    if variant.hidden:
+        return {"name": variant.report_name, "hidden": True}
+    return {"name": variant.name, "hidden": False, "world": variant.world().name}
 
 
 def write_results(path: Path, lesson: Lesson, results: list[SubmissionResult]) -> None:
@@ -102,6 +110,17 @@ def write_results(path: Path, lesson: Lesson, results: list[SubmissionResult]) -
     part = path.with_name(path.name + ".part")
     part.write_text(json.dumps(results_document(lesson, results), indent=2) + "\n", encoding="utf-8")
     os.replace(part, path)
+
+
+def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
+    """The lesson folder a spawned worker reads again: the lesson's own, unless its hidden variants come
+    from elsewhere (a teacher's private copy), then a copy of it with those as its own hidden/ folder."""
+    if lesson.hidden_file is None or lesson.hidden_file == find_hidden(lesson.folder):
+        return str(lesson.folder)
+    copy = workdir / "lesson" / lesson.id
+    shutil.copytree(lesson.folder, copy, ignore=shutil.ignore_patterns(HIDDEN_DIR, "__pycache__"))
+    shutil.copytree(lesson.hidden_file.parent, copy / HIDDEN_DIR)
+    return str(copy)
 
 
 def grade(
@@ -132,6 +151,7 @@ def grade(
     pending: dict[int, _Pending] = {}
     queue: list[Job] = []
     workdir = Path(tempfile.mkdtemp(prefix="ev3sim2d-grade-"))
+    lesson_folder = str(lesson.folder) if use_fork else _folder_for_spawned_workers(lesson, workdir)
     reused = 0
 
     def finish(index: int, result: SubmissionResult) -> None:
@@ -163,7 +183,7 @@ def grade(
                     variant=v,
                     entry=str(submission.entry.resolve()),
                     folder=str(workdir / f"s{index}-v{v}"),
-                    lesson=str(lesson.folder),
+                    lesson=lesson_folder,
                     variant_name=variant.name,
                     time_s=variant.time_s,
                     seed=variant.seed,

@@ -2,7 +2,12 @@
 
 The folder holds `lesson.yaml`, `README.md` (the task as a student reads it),
 `starter.py`, `solution.py`, world files the lesson needs, and optionally
-`check_*.py` files with check kinds of its own.  Every mistake in lesson.yaml
+`check_*.py` files with check kinds of its own.  Its hidden variants live apart,
+in `hidden/hidden.yaml` with their world files (a folder a wheel never ships),
+or in a teacher's private copy named with `load_lesson(..., hidden=DIR)`
+(`ev3sim2d grade --hidden DIR`); without either, only the visible variants are
+graded.  At least one check is a goal check (`goal: true`); the others count
+only once every goal check passes.  Every mistake in lesson.yaml or hidden.yaml
 is a WorldFileError naming the file, the line and what to write instead.  The
 format is described in docs/lessons.md.
 """
@@ -20,10 +25,13 @@ from pathlib import Path
 from ..simulation import Simulation, StartBlocked
 from ..world.source_error import WorldFileError
 from ..world.yaml_source import Fields, Node, load_yaml_text, read_text_file
-from .check import Check, builtin_checks, checks_from_node
+from .check import COMMON_KEYS, Check, builtin_checks, checks_from_node
 from .variant import Variant, read_robot, variant_from_node
 
 LESSON_FILE = "lesson.yaml"
+HIDDEN_DIR = "hidden"  # lessons/<id>/hidden/: the hidden variants and their worlds, never in a wheel
+HIDDEN_FILE = "hidden.yaml"
+HIDDEN_KEYS = ("variants",)
 LESSON_KEYS = (
     "title",
     "goal",
@@ -38,7 +46,7 @@ LESSON_KEYS = (
 )
 LIMIT_KEYS = ("wall_s", "cpu_s", "memory_mb", "hang_s", "output_mb")
 GRADER_VERSION = (
-    "1"  # part of every result's key: bump it when scoring changes, so old results are not reused
+    "2"  # part of every result's key: bump it when scoring changes, so old results are not reused
 )
 
 
@@ -77,6 +85,8 @@ class Lesson:
     starter: Path | None = None
     solution: Path | None = None
     text: str = ""
+    hidden_file: Path | None = None  # where the hidden variants came from (None: no hidden variants)
+    hidden_text: str = ""
 
     @property
     def source(self) -> Path:
@@ -102,10 +112,19 @@ class Lesson:
     def visible_variants(self) -> list[Variant]:
         return [v for v in self.variants if not v.hidden]
 
+    def hidden_variants(self) -> list[Variant]:
+        return [v for v in self.variants if v.hidden]
+
+    @property
+    def goal_checks(self) -> list[Check]:
+        return [check for check in self.checks if check.goal]
+
     def digest(self) -> str:
-        """A hash of everything that decides a score: lesson file, check files, worlds, robots, grader version."""
+        """A hash of everything that decides a score: lesson and hidden files, check files, worlds, robots,
+        grader version."""
         h = hashlib.sha256(GRADER_VERSION.encode())
         h.update(self.text.encode())
+        h.update(self.hidden_text.encode())
         for path in sorted(self.folder.glob("check_*.py")):
             h.update(path.read_bytes())
         for variant in self.variants:
@@ -156,8 +175,31 @@ def find_lesson(name_or_path: str | Path) -> Path:
 # -- reading ------------------------------------------------------------------------------
 
 
-def load_lesson(name_or_path: str | Path) -> Lesson:
-    """Read a lesson by folder, lesson.yaml path or shipped id; worlds and check parameters are checked now."""
+def find_hidden(folder: Path, hidden: str | Path | None = None) -> Path | None:
+    """The hidden.yaml of the lesson in `folder`: with `hidden` (a teacher's private copy) DIR/hidden.yaml or
+    DIR/<lesson id>/hidden.yaml, else the lesson's own hidden/hidden.yaml; None when there is none."""
+    if hidden is None:
+        own = folder / HIDDEN_DIR / HIDDEN_FILE
+        return own if own.is_file() else None
+    base = Path(hidden)
+    for candidate in (base / HIDDEN_FILE, base / folder.name / HIDDEN_FILE, base):
+        if candidate.is_file() and candidate.name == HIDDEN_FILE:
+            return candidate.resolve()
+    raise WorldFileError(
+        str(hidden),
+        None,
+        None,
+        f"no {HIDDEN_FILE} for lesson '{folder.name}' here: give a folder holding {HIDDEN_FILE} "
+        f"(with the hidden variants' world files), or one holding {folder.name}/{HIDDEN_FILE}",
+    )
+
+
+def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> Lesson:
+    """Read a lesson by folder, lesson.yaml path or shipped id; worlds and check parameters are checked now.
+
+    The hidden variants come from `hidden` (a folder with hidden.yaml, or with <lesson id>/hidden.yaml) if
+    given, else from the lesson's own hidden/hidden.yaml if there is one; they follow the visible ones.
+    """
     folder = find_lesson(name_or_path).resolve()
     path = folder / LESSON_FILE
     text = read_text_file(path)
@@ -182,20 +224,23 @@ def load_lesson(name_or_path: str | Path) -> Lesson:
         raise variants_node.error("a lesson needs at least one variant; e.g. `- {name: basic, world: maze}`")
     variants: list[Variant] = []
     for item in items:
-        variant, vfields = variant_from_node(item, folder, time_s, seed, robot)
-        if any(v.name == variant.name for v in variants):
-            raise vfields.get("name").error(
-                f"two variants are named '{variant.name}'; give each its own name"
+        _add_variant(variants, *variant_from_node(item, folder, time_s, seed, robot))
+
+    hidden_file = find_hidden(folder, hidden)
+    hidden_text = ""
+    if hidden_file is not None:
+        hidden_text = read_text_file(hidden_file)
+        for item in _hidden_items(hidden_text, hidden_file):
+            variant, vfields = variant_from_node(
+                item, [hidden_file.parent, folder], time_s, seed, robot, hidden=True
             )
-        _check_start_fits(variant, vfields.get("start") or vfields.get("world"))
-        variants.append(variant)
-    if all(v.hidden for v in variants):
-        raise variants_node.error(
-            "every variant is hidden; leave at least one for students to try", column=False
-        )
+            variant.hidden_number = sum(v.hidden for v in variants) + 1
+            _add_variant(variants, variant, vfields)
 
     kinds = {**builtin_checks(), **_lesson_check_kinds(folder, path)}
-    checks = checks_from_node(fields.require("checks", "checks: [{kind: reach_region, region: goal}]"), kinds)
+    checks = checks_from_node(
+        fields.require("checks", "checks: [{kind: reach_region, region: goal, goal: true}]"), kinds
+    )
     for variant in variants:
         world = variant.world()
         for check in checks:
@@ -213,7 +258,31 @@ def load_lesson(name_or_path: str | Path) -> Lesson:
         starter=_program(fields, "starter", folder),
         solution=_program(fields, "solution", folder),
         text=text,
+        hidden_file=hidden_file,
+        hidden_text=hidden_text,
     )
+
+
+def _add_variant(variants: list[Variant], variant: Variant, fields: Fields) -> None:
+    """Append the variant once its name is known to be new and its robot fits where it starts."""
+    if any(v.name == variant.name for v in variants):
+        raise fields.get("name").error(f"two variants are named '{variant.name}'; give each its own name")
+    _check_start_fits(variant, fields.get("start") or fields.get("world"))
+    variants.append(variant)
+
+
+def _hidden_items(text: str, path: Path) -> list[Node]:
+    """The `variants:` list of a hidden.yaml (at least one)."""
+    example = "variants: [{name: far, world: far.yaml}]"
+    root = load_yaml_text(text, str(path))
+    if not root.is_mapping:
+        raise root.error(f"a {HIDDEN_FILE} file is a mapping with the key `variants:`, got {root.describe()}")
+    fields = Fields(root, f"the {HIDDEN_FILE} file", HIDDEN_KEYS)
+    node = fields.require("variants", example)
+    items = node.as_list("variants", example)
+    if not items:
+        raise node.error(f"no hidden variants; e.g. `{example}`, or remove the file")
+    return items
 
 
 def _check_start_fits(variant: Variant, node: Node) -> None:
@@ -268,6 +337,15 @@ def _lesson_check_kinds(folder: Path, lesson_path: Path) -> dict[str, type[Check
                         None,
                         None,
                         f"check kind '{cls.KIND}' is a built-in kind; give yours another KIND",
+                    )
+                common = [p.name for p in cls.PARAMS if p.name in COMMON_KEYS]
+                if common:
+                    raise WorldFileError(
+                        str(path),
+                        None,
+                        None,
+                        f"check kind '{cls.KIND}' has a parameter named '{common[0]}', a key every check has "
+                        f"({', '.join(COMMON_KEYS)}); give it another name",
                     )
                 kinds[cls.KIND] = cls
     return kinds

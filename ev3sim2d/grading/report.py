@@ -1,4 +1,9 @@
-"""Grading results for people and machines: a terminal table, per-check details, JSON, JUnit XML and CSV."""
+"""Grading results for people and machines: a terminal table, per-check details, JSON, JUnit XML and CSV.
+
+Hidden variants appear as "hidden variant N" with their score and what went wrong in words (the
+results hold nothing more of them, see scoring.py); a secondary check that earned nothing because the
+goal was not met is marked `----`, and skipped in JUnit.
+"""
 
 from __future__ import annotations
 
@@ -18,10 +23,6 @@ def _points(value: float) -> str:
     return f"{value:g}" if float(value).is_integer() else f"{value:.1f}"
 
 
-def _variant_label(name: str, hidden: bool) -> str:
-    return f"{name}*" if hidden else name
-
-
 def score_text(result: SubmissionResult) -> str:
     return f"{_points(result.score)}/{_points(result.max_score)}"
 
@@ -29,19 +30,21 @@ def score_text(result: SubmissionResult) -> str:
 def table(grading: Grading) -> str:
     """One line per submission: score, status, each variant's score, and the first thing that went wrong."""
     lesson = grading.lesson
-    labels = [_variant_label(v.name, v.hidden) for v in lesson.variants]
+    labels = [v.report_name for v in lesson.variants]
     header = ["submission", "score", "status", *labels, "first problem"]
     rows = []
     for result in grading.results:
         by_name = {v.name: v for v in result.variants}
-        cells = [_points(by_name[v.name].score) if v.name in by_name else "-" for v in lesson.variants]
+        cells = [_points(by_name[name].score) if name in by_name else "-" for name in labels]
         failure = result.first_failure()
         if len(failure) > FAILURE_WIDTH:
             failure = failure[: FAILURE_WIDTH - 3] + "..."
         rows.append([result.submission, score_text(result), result.status, *cells, failure])
     widths = [max(len(str(row[i])) for row in [header, *rows]) for i in range(len(header))]
+    hidden = len(lesson.hidden_variants())
     lines = [
-        f"{lesson.id}: {lesson.title} ({len(lesson.variants)} variants, {_points(lesson.max_score)} points; * hidden)"
+        f"{lesson.id}: {lesson.title} ({len(lesson.variants)} variants, {hidden} of them hidden, "
+        f"{_points(lesson.max_score)} points)"
     ]
     for row in [header, *rows]:
         lines.append(
@@ -52,15 +55,26 @@ def table(grading: Grading) -> str:
     return "\n".join(lines)
 
 
+def hidden_summary(variant: VariantResult) -> str:
+    """ "passed", or "failed — the robot touched a wall": all a report says of a hidden variant's run."""
+    if variant.passed:
+        return "passed"
+    failed = variant.failed_checks()
+    reason = variant.message if variant.status != "graded" or not failed else failed[0].message
+    return f"failed — {reason}"
+
+
 def variant_details(variant: VariantResult) -> list[str]:
-    hidden = " (hidden)" if variant.hidden else ""
-    lines = [
-        f"  {variant.name}{hidden}: {_points(variant.score)}/{_points(variant.max_score)}, {variant.message}"
-    ]
+    score = f"{_points(variant.score)}/{_points(variant.max_score)}"
+    if variant.hidden:
+        lines = [f"  {variant.name}: {score}, {hidden_summary(variant)}"]
+    else:
+        lines = [f"  {variant.name}: {score}, {variant.message}"]
     for check in variant.checks:
-        mark = "PASS" if check.passed else "FAIL"
+        mark = "PASS" if check.passed else "----" if check.gated else "FAIL"
+        goal = ", goal" if check.goal else ""
         lines.append(
-            f"    {mark} {check.name} ({_points(check.points)}/{_points(check.max_points)}): {check.message}"
+            f"    {mark} {check.name} ({_points(check.points)}/{_points(check.max_points)}{goal}): {check.message}"
         )
     return lines
 
@@ -82,10 +96,10 @@ def write_json(path: str | Path, grading: Grading) -> None:
 def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTree:
     """A <testsuites> with one <testsuite> per submission and one <testcase> per variant and check."""
     suites = ET.Element("testsuites", name=f"ev3sim2d {lesson.id}")
-    total_tests = total_failures = total_errors = 0
+    total_tests = total_failures = total_errors = total_skipped = 0
     for result in results:
         suite = ET.SubElement(suites, "testsuite", name=result.submission)
-        tests = failures = errors = 0
+        tests = failures = errors = skipped = 0
         if result.problem:
             case = ET.SubElement(
                 suite, "testcase", classname=f"{lesson.id}.{result.submission}", name="program"
@@ -105,6 +119,9 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
                 case.set("max_points", _points(check.max_points))
                 if check.passed:
                     ET.SubElement(case, "system-out").text = check.message
+                elif check.gated:
+                    skipped += 1
+                    ET.SubElement(case, "skipped", message=check.message)
                 elif variant.status in ("graded", "error"):
                     failures += 1
                     ET.SubElement(
@@ -118,16 +135,19 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
         suite.set("tests", str(tests))
         suite.set("failures", str(failures))
         suite.set("errors", str(errors))
+        suite.set("skipped", str(skipped))
         suite.set("score", _points(result.score))
         suite.set("max_score", _points(result.max_score))
-        total_tests, total_failures, total_errors = (
+        total_tests, total_failures, total_errors, total_skipped = (
             total_tests + tests,
             total_failures + failures,
             total_errors + errors,
+            total_skipped + skipped,
         )
     suites.set("tests", str(total_tests))
     suites.set("failures", str(total_failures))
     suites.set("errors", str(total_errors))
+    suites.set("skipped", str(total_skipped))
     ET.indent(suites)
     return ET.ElementTree(suites)
 
@@ -155,7 +175,7 @@ def write_csv(path: str | Path, grading: Grading) -> None:
                     "score",
                     "max_score",
                     "percent",
-                    *[v.name for v in lesson.variants],
+                    *[v.report_name for v in lesson.variants],
                     "first_problem",
                 ]
             )
@@ -170,7 +190,7 @@ def write_csv(path: str | Path, grading: Grading) -> None:
                         _points(result.max_score),
                         f"{percent:.0f}",
                         *[
-                            _points(by_name[v.name].score) if v.name in by_name else ""
+                            _points(by_name[v.report_name].score) if v.report_name in by_name else ""
                             for v in lesson.variants
                         ],
                         result.first_failure(),

@@ -9,6 +9,10 @@ Statuses of a variant and a submission:
 - `crashed`: the Python interpreter running it died (a segmentation fault, a signal);
 - `missing`: no program to run was found.
 A submission's status is the worst of its variants' (in the order crashed, memory, output, timeout, error, missing).
+
+A secondary check that passed but earned nothing because a goal check of its variant failed is `gated`
+(and not passed); a hidden variant's result is named "hidden variant N" and holds no times or numbers
+(see scoring.py).
 """
 
 from __future__ import annotations
@@ -29,6 +33,8 @@ class CheckResult:
     max_points: float
     message: str
     t_s: float | None = None
+    goal: bool = False  # one of the lesson's goal checks
+    gated: bool = False  # a secondary check that passed, but earned nothing because a goal check failed
 
 
 @dataclass
@@ -55,7 +61,9 @@ class VariantResult:
         return all(c.passed for c in self.checks)
 
     def failed_checks(self) -> list[CheckResult]:
-        return [c for c in self.checks if not c.passed]
+        """The checks that earned nothing: those that failed on their own first, then the gated ones."""
+        failed = [c for c in self.checks if not c.passed]
+        return [c for c in failed if not c.gated] + [c for c in failed if c.gated]
 
     def to_dict(self) -> dict:
         data = asdict(self)
@@ -110,7 +118,10 @@ class SubmissionResult:
         else:
             for variant in self.variants:
                 failed = variant.failed_checks()
-                if variant.status != "graded":
+                if variant.hidden and (variant.status != "graded" or failed):
+                    reason = variant.message if variant.status != "graded" else failed[0].message
+                    line = f"{variant.name}: failed — {reason}"
+                elif variant.status != "graded":
                     line = f"{variant.name}: {variant.message}"
                 elif failed:
                     line = f"{variant.name}: {failed[0].name}: {failed[0].message}"

@@ -1,7 +1,18 @@
-"""Score one run of one variant: every check of the lesson on the run's record, or none if there was no run."""
+"""Score one run of one variant: every check of the lesson on the run's record, or none if there was no run.
+
+The gating rule: a lesson's goal checks (`goal: true`) are the task itself; every other check
+(stopped, no wall contact, finished, ...) earns its points only once every goal check of the same
+variant passes.  A secondary check that passes while a goal check fails is `gated`: 0 points, and the
+message says why ("counts only once the robot reaches the goal"); one that fails on its own says
+its own reason.  So a program that does nothing, or only prints, scores 0.
+
+A hidden variant's result tells no more than its score and what went wrong in words: it is named
+"hidden variant N", and its messages are the checks' `brief` ones, without times, distances or places.
+"""
 
 from __future__ import annotations
 
+from .check import Check, Outcome
 from .checks.finished import describe_error
 from .lesson import Lesson
 from .result import CheckResult, VariantResult
@@ -14,53 +25,82 @@ RUN_STATUS = {
     "hung": "timeout",
     "interrupted": "error",
 }
+GATED = "counts only once the robot reaches the goal"
 
 
-def run_message(record: RunRecord, status: str, memory_mb: float) -> str:
-    """How the run ended, in a sentence for students."""
-    end = seconds(record.end_s)
+def run_message(record: RunRecord, status: str, memory_mb: float, hidden: bool = False) -> str:
+    """How the run ended, in a sentence for students (without times or the error's text in a hidden variant)."""
+    end = "" if hidden else f" at {seconds(record.end_s)}"
     error = record.error or {}
     if status == "memory":
-        return (
-            f"the program ran out of memory at {end} (it may use {memory_mb:g} MB); line {error.get('line')}"
-        )
+        if hidden:
+            return "the program ran out of memory"
+        return f"the program ran out of memory{end} (it may use {memory_mb:g} MB); line {error.get('line')}"
     if record.status == "error":
-        return f"the program stopped with an error at {end}: {describe_error(error)}"
+        if hidden:
+            return f"the program stopped with an error ({error.get('type', 'an error')})"
+        return f"the program stopped with an error{end}: {describe_error(error)}"
     if record.status == "hung":
-        return f"the program got stuck at {end} in a loop that never uses the robot or the clock, so it was stopped"
+        return (
+            f"the program got stuck{end} in a loop that never uses the robot or the clock, so it was stopped"
+        )
     if record.status == "time_limit":
-        return f"the program ran until the time limit of {end}"
-    return f"the program finished at {end}"
+        return "the program ran until the time limit" + ("" if hidden else f" of {seconds(record.end_s)}")
+    return f"the program finished{end}"
+
+
+def gated_message(failed_goals: list[str]) -> str:
+    """Why a secondary check earned nothing: the goal checks that did not pass."""
+    return f"{GATED} ({', '.join(failed_goals)} did not pass)"
+
+
+def check_results(checks: list[Check], outcomes: list[Outcome], hidden: bool = False) -> list[CheckResult]:
+    """The checks' outcomes as results, with the gating rule applied (see the module docstring)."""
+    failed_goals = [c.name for c, o in zip(checks, outcomes, strict=True) if c.goal and not o.passed]
+    results = []
+    for check, found in zip(checks, outcomes, strict=True):
+        gated = bool(failed_goals) and not check.goal and bool(found.passed)
+        passed = bool(found.passed) and not gated
+        if gated:
+            message, t_s = gated_message(failed_goals), None
+        elif hidden:
+            message, t_s = check.brief_of(found), None
+        else:
+            message, t_s = found.message, None if found.t_s is None else round(float(found.t_s), 3)
+        results.append(
+            CheckResult(
+                check.name,
+                check.KIND,
+                passed,
+                check.points if passed else 0.0,
+                check.points,
+                message,
+                t_s,
+                goal=check.goal,
+                gated=gated,
+            )
+        )
+    return results
 
 
 def score_run(
     lesson: Lesson, variant_index: int, record: RunRecord, ran_out_of_memory: bool = False
 ) -> VariantResult:
-    """Every check of the lesson on the run, in the lesson's order."""
+    """Every check of the lesson on the run, in the lesson's order, gated by the goal checks."""
     variant = lesson.variants[variant_index]
-    checks = []
-    for check in lesson.checks:
-        found = check.evaluate(record)
-        checks.append(
-            CheckResult(
-                check.name,
-                check.KIND,
-                bool(found.passed),
-                check.points if found.passed else 0.0,
-                check.points,
-                found.message,
-                None if found.t_s is None else round(float(found.t_s), 3),
-            )
-        )
+    outcomes = [check.evaluate(record) for check in lesson.checks]
+    checks = check_results(lesson.checks, outcomes, variant.hidden)
     status = "memory" if ran_out_of_memory else RUN_STATUS.get(record.status, "error")
-    message = run_message(record, status, lesson.limits.memory_mb)
-    return VariantResult(variant.name, variant.hidden, status, message, round(record.end_s, 3), checks)
+    message = run_message(record, status, lesson.limits.memory_mb, variant.hidden)
+    sim_time_s = None if variant.hidden else round(record.end_s, 3)
+    return VariantResult(variant.report_name, variant.hidden, status, message, sim_time_s, checks)
 
 
 def not_run(lesson: Lesson, variant_index: int, status: str, message: str) -> VariantResult:
     """A variant whose run left nothing to judge: every check fails, saying why."""
     variant = lesson.variants[variant_index]
     checks = [
-        CheckResult(c.name, c.KIND, False, 0.0, c.points, f"not judged: {message}") for c in lesson.checks
+        CheckResult(c.name, c.KIND, False, 0.0, c.points, f"not judged: {message}", goal=c.goal)
+        for c in lesson.checks
     ]
-    return VariantResult(variant.name, variant.hidden, status, message, None, checks)
+    return VariantResult(variant.report_name, variant.hidden, status, message, None, checks)

@@ -1,8 +1,10 @@
 """One variant of a lesson: the world a program is graded in, with its start, robot, sensor noise and seed.
 
 Variants keep a program honest: another start pose, a mirrored or different
-maze, noisy sensors with another seed.  A `hidden: true` variant is graded like
-the others but left out of what students read about the lesson.
+maze, noisy sensors with another seed.  The visible variants are in lesson.yaml;
+the hidden ones, graded like the others but never shipped nor shown to students,
+in `hidden/hidden.yaml` (see lesson.py), whose worlds and robots are looked for in
+that folder first.  Reports call a hidden variant only "hidden variant N".
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from ..world.world import World
 from ..world.yaml_source import Fields, Node
 
 VARIANT_KEYS = ("name", "world", "description", "hidden", "start", "robot", "noise", "seed", "time_s")
-VARIANT_EXAMPLE = "- {name: mirrored, world: maze-mirrored.yaml, hidden: true}"
+VARIANT_EXAMPLE = "- {name: mirrored, world: maze-mirrored.yaml}"
 START_EXAMPLE = "start: {x_cm: 60, y_cm: 40, heading_deg: 90}"
 
 
@@ -35,7 +37,13 @@ class Variant:
     start: Pose | None = None
     robot: RobotSpec | None = None  # None: the world's own robot
     noise: dict[str, float] = field(default_factory=dict)
+    hidden_number: int = 0  # 1, 2, ... for hidden variants, in the order of hidden.yaml
     _world: World | None = field(default=None, repr=False)
+
+    @property
+    def report_name(self) -> str:
+        """The name reports show: the variant's own, or "hidden variant N" (a name could give its world away)."""
+        return f"hidden variant {self.hidden_number}" if self.hidden else self.name
 
     def world(self) -> World:
         """The world to run in, with this variant's start, robot and noise (read once)."""
@@ -57,22 +65,33 @@ def with_noise(robot: RobotSpec, noise: dict[str, float]) -> RobotSpec:
     return dataclasses.replace(robot, sensors=sensors)
 
 
-def find_world_file(value: str, lesson_dir: Path) -> Path | None:
-    """A world file in the lesson's folder (with or without .yaml), else a shipped maze by name."""
+def _folders(folders: Path | list[Path]) -> list[Path]:
+    return [folders] if isinstance(folders, Path) else list(folders)
+
+
+def _named(folders: list[Path]) -> str:
+    return " or ".join(str(folder) for folder in folders)
+
+
+def find_world_file(value: str, folders: Path | list[Path]) -> Path | None:
+    """A world file in the given folders, in order (with or without .yaml), else a shipped maze by name."""
     candidate = Path(value)
-    places = [lesson_dir / candidate, lesson_dir / f"{value}.yaml"]
+    places = [
+        place for folder in _folders(folders) for place in (folder / candidate, folder / f"{value}.yaml")
+    ]
     stem = candidate.stem if candidate.suffix in (".yaml", ".yml") else candidate.name
     places.append(shipped_mazes_dir() / f"{stem}.yaml")
     return next((p for p in places if p.is_file()), None)
 
 
-def read_robot(node: Node, lesson_dir: Path) -> RobotSpec:
-    """`robot: FILE` (in the lesson folder) or the name of a shipped robot."""
+def read_robot(node: Node, folders: Path | list[Path]) -> RobotSpec:
+    """`robot: FILE` (in the given folders, in order) or the name of a shipped robot."""
     value = node.as_text("robot", "robot: ev3-driving-base").strip()
-    path = find_robot(value, lesson_dir)
+    folders = _folders(folders)
+    path = next((found for f in folders if (found := find_robot(value, f)) is not None), None)
     if path is None:
         raise node.error(
-            f"no robot file '{value}' in {lesson_dir} and no shipped robot by that name; "
+            f"no robot file '{value}' in {_named(folders)} and no shipped robot by that name; "
             f"shipped robots: {', '.join(shipped_robot_names())}"
         )
     return load_robot(path)
@@ -114,12 +133,30 @@ def read_start(node: Node, world: World) -> Pose:
 
 
 def variant_from_node(
-    node: Node, lesson_dir: Path, default_time_s: float, default_seed: int, default_robot: RobotSpec | None
+    node: Node,
+    folders: Path | list[Path],
+    default_time_s: float,
+    default_seed: int,
+    default_robot: RobotSpec | None,
+    hidden: bool = False,
 ) -> tuple[Variant, Fields]:
-    """One entry of `variants:`; the world, start and robot are read (and checked) now."""
+    """One entry of `variants:` (of lesson.yaml, or with `hidden` of hidden.yaml); the world, start and
+    robot are read (and checked) now, worlds and robots looked for in `folders` in order."""
+    folders = _folders(folders)
     if not node.is_mapping:
         raise node.error(f"each variant is a mapping like `{VARIANT_EXAMPLE}`, got {node.describe()}")
     fields = node.as_fields("variant", VARIANT_KEYS, VARIANT_EXAMPLE)
+    if "hidden" in fields:
+        written = fields.boolean("hidden")
+        if not hidden and written:
+            raise fields.key("hidden").error(
+                "hidden variants live apart from lesson.yaml, in hidden/hidden.yaml next to it (never shipped, "
+                "never shown to students); move this variant there, with its world files"
+            )
+        if hidden and not written:
+            raise fields.key("hidden").error(
+                "every variant in hidden.yaml is hidden; a visible variant belongs in lesson.yaml"
+            )
     name = fields.text("name", example="name: mirrored").strip()
     if not name or any(c in name for c in "/\\ "):
         raise fields.get("name").error(
@@ -127,22 +164,22 @@ def variant_from_node(
         )
     world_node = fields.require("world", "world: maze.yaml")
     world_value = world_node.as_text("world", "world: maze.yaml").strip()
-    world_path = find_world_file(world_value, lesson_dir)
+    world_path = find_world_file(world_value, folders)
     if world_path is None:
         raise world_node.error(
-            f"no world file '{world_value}' in {lesson_dir} and no shipped maze by that name; "
+            f"no world file '{world_value}' in {_named(folders)} and no shipped maze by that name; "
             "give a .yaml file in the lesson's folder or a shipped maze (ev3sim2d mazes)"
         )
     time_s = fields.number("time_s", default=default_time_s, unit="simulated seconds", example="time_s: 60")
     if time_s <= 0:
         raise fields.get("time_s").error(f"'time_s' must be more than 0, got {time_s:g}")
-    robot = read_robot(fields.get("robot"), lesson_dir) if "robot" in fields else default_robot
+    robot = read_robot(fields.get("robot"), folders) if "robot" in fields else default_robot
     variant = Variant(
         name=name,
         world_path=world_path,
         time_s=time_s,
         seed=fields.integer("seed", default=default_seed, example="seed: 1"),
-        hidden=fields.boolean("hidden", default=False),
+        hidden=hidden,
         description=fields.text("description", default="").strip(),
         robot=robot,
         noise=read_noise(fields.get("noise")) if "noise" in fields else {},

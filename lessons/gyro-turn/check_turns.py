@@ -1,7 +1,8 @@
 """A check kind of this lesson: `turns`, the robot turns on the spot by given angles, pausing after each.
 
 An example of a lesson's own check: a Check subclass with a KIND, in a check_*.py file next to
-lesson.yaml.  It reads only the run's record (the trace and the world).
+lesson.yaml.  It reads only the run's record (the trace and the world), and says what it found twice:
+in full, and without numbers (`brief`, shown for hidden variants).
 """
 
 from __future__ import annotations
@@ -63,7 +64,10 @@ class Turns(Check):
         for i, wanted in enumerate(self.angles_deg):
             if i >= len(turns):
                 return Outcome(
-                    False, f"{self._count(turns, made)}; pause {self.pause_s:g} s after each turn", run.end_s
+                    False,
+                    f"{self._count(turns, made)}; pause {self.pause_s:g} s after each turn",
+                    run.end_s,
+                    "made too few turns, or did not pause after each",
                 )
             if abs(turns[i] - wanted) > self.within_deg + 1e-9:
                 which = ORDINALS[i] if i < len(ORDINALS) else f"turn {i + 1}"
@@ -72,10 +76,16 @@ class Turns(Check):
                     f"the {which} turn, ending at {seconds(times[i + 1])}, was {turns[i]:.1f}° to the right, "
                     f"not {wanted:g}° (±{self.within_deg:g}°)",
                     times[i + 1],
+                    f"the {which} turn was not exact",
                 )
         if len(turns) > len(self.angles_deg):
-            return Outcome(False, self._count(turns, made), run.end_s)
-        return Outcome(True, f"turned {made} to the right, each within {self.within_deg:g}°", times[-1])
+            return Outcome(False, self._count(turns, made), run.end_s, "made too many turns")
+        return Outcome(
+            True,
+            f"turned {made} to the right, each within {self.within_deg:g}°",
+            times[-1],
+            "turned by each angle",
+        )
 
     def _count(self, turns: list[float], made: str) -> str:
         wanted = len(self.angles_deg)

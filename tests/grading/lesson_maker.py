@@ -1,4 +1,7 @@
-"""A small lesson written into a temporary folder: drive 30 cm ahead into the goal and stop."""
+"""A small lesson written into a temporary folder: drive 30 cm ahead into the goal and stop.
+
+Its goal check is `reach` (the others count once it passes); its hidden variant is in hidden/hidden.yaml.
+"""
 
 import textwrap
 from pathlib import Path
@@ -28,14 +31,17 @@ time_s: {time_s}
 variants:
   - name: room
     world: room.yaml
-  - name: hidden-room
-    world: room.yaml
-    hidden: true
-    seed: 3
 checks:
-  - {{name: reach, kind: reach_region, region: goal, points: 3}}
+  - {{name: reach, kind: reach_region, region: goal, goal: true, points: 3}}
   - {{name: stop, kind: stop_in_region, region: goal, points: 1}}
   - {{name: finished, kind: finished, points: 1}}
+"""
+
+HIDDEN = """\
+variants:
+  - name: hidden-room
+    world: room.yaml
+    seed: 3
 """
 
 GOOD = """\
@@ -51,10 +57,20 @@ tank.on_for_rotations(SpeedPercent(40), SpeedPercent(40), 10 / 17.59)
 """
 
 
-def write_lesson(folder: Path, time_s: float = 5, extra: str = "", lesson_text: str | None = None) -> Path:
+def write_lesson(
+    folder: Path,
+    time_s: float = 5,
+    extra: str = "",
+    lesson_text: str | None = None,
+    hidden_text: str | None = HIDDEN,
+) -> Path:
+    """The lesson folder, with hidden/hidden.yaml unless `hidden_text` is None."""
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "room.yaml").write_text(ROOM)
     (folder / "lesson.yaml").write_text(lesson_text or LESSON.format(time_s=time_s, extra=extra))
+    if hidden_text is not None:
+        (folder / "hidden").mkdir(exist_ok=True)
+        (folder / "hidden" / "hidden.yaml").write_text(hidden_text)
     return folder
 
 

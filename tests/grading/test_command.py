@@ -5,7 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from .lesson_maker import GOOD, SHORT, write_lesson, write_program
+from .lesson_maker import GOOD, HIDDEN, SHORT, write_lesson, write_program
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -34,7 +34,7 @@ def test_one_program_that_passes_exits_0_with_its_details(tmp_path):
         tmp_path / "r.csv",
     )
     assert result.returncode == 0, result.stderr
-    assert "good.py: 10/10 (graded)" in result.stdout and "PASS reach (3/3)" in result.stdout
+    assert "good.py: 10/10 (graded)" in result.stdout and "PASS reach (3/3, goal)" in result.stdout
     assert json.loads((tmp_path / "r.json").read_text())["submissions"][0]["score"] == 10
     assert (tmp_path / "r.xml").read_text().startswith("<?xml")
     assert (tmp_path / "r.csv").read_text().startswith("submission,status,score")
@@ -45,8 +45,9 @@ def test_one_program_that_fails_exits_1(tmp_path):
     prog = write_program(tmp_path, "short.py", SHORT)
     result = grade_cli(lesson, prog)
     assert result.returncode == 1
-    assert "FAIL reach (0/3)" in result.stdout
-    assert grade_cli(lesson, prog, "--pass-percent", "20").returncode == 0
+    assert "FAIL reach (0/3, goal)" in result.stdout
+    assert "---- finished (0/1): counts only once the robot reaches the goal" in result.stdout
+    assert grade_cli(lesson, prog, "--pass-percent", "0").returncode == 0
 
 
 def test_a_class_prints_a_table_and_exits_0(tmp_path):
@@ -59,16 +60,49 @@ def test_a_class_prints_a_table_and_exits_0(tmp_path):
     assert "[1/2]" in result.stderr and "[2/2]" in result.stderr
 
 
-def test_videos_keep_what_happened_in_failed_variants(tmp_path):
+def kept_videos(folder: Path) -> list[str]:
+    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*.*"))
+
+
+def test_videos_keep_what_happened_in_failed_visible_variants(tmp_path):
     lesson = write_lesson(tmp_path / "lesson")
     write_program(tmp_path / "class", "alice.py", GOOD)
     write_program(tmp_path / "class", "bob.py", SHORT)
     result = grade_cli(lesson, tmp_path / "class", "--videos", tmp_path / "videos")
     assert result.returncode == 0, result.stderr
-    kept = sorted(p.relative_to(tmp_path / "videos").as_posix() for p in (tmp_path / "videos").rglob("*.*"))
+    kept = kept_videos(tmp_path / "videos")
     assert not any(name.startswith("alice") for name in kept)
     assert any(name.startswith("bob/room.") for name in kept)
+    assert not any("hidden" in name for name in kept)  # a video would show the hidden world
+
+
+def test_hidden_variants_videos_only_when_the_teacher_asks(tmp_path):
+    lesson = write_lesson(tmp_path / "lesson")
+    prog = write_program(tmp_path, "bob.py", SHORT)
+    result = grade_cli(lesson, prog, "--videos", tmp_path / "videos", "--hidden-videos")
+    assert result.returncode == 1, result.stderr
+    kept = kept_videos(tmp_path / "videos")
+    assert any(name.startswith("bob/room.") for name in kept)
     assert any(name.startswith("bob/hidden-room.") for name in kept)
+    alone = grade_cli(lesson, prog, "--hidden-videos")
+    assert alone.returncode == 2 and "--hidden-videos needs --videos DIR" in alone.stderr
+
+
+def test_hidden_variants_from_a_teachers_private_folder(tmp_path):
+    lesson = write_lesson(tmp_path / "lesson", hidden_text=None)
+    prog = write_program(tmp_path, "good.py", GOOD)
+    visible_only = grade_cli(lesson, prog)
+    assert visible_only.returncode == 0 and "good.py: 5/5 (graded)" in visible_only.stdout
+    assert "grading its visible variants only" in visible_only.stderr
+    private = tmp_path / "private" / "lesson"
+    private.mkdir(parents=True)
+    (private / "hidden.yaml").write_text(HIDDEN)
+    result = grade_cli(lesson, prog, "--hidden", tmp_path / "private")
+    assert result.returncode == 0, result.stderr
+    assert "good.py: 10/10 (graded)" in result.stdout and "hidden variant 1: 5/5, passed" in result.stdout
+    assert "hidden-room" not in result.stdout + result.stderr
+    missing = grade_cli(lesson, prog, "--hidden", tmp_path / "nowhere")
+    assert missing.returncode == 2 and "no hidden.yaml for lesson 'lesson' here" in missing.stderr
 
 
 def test_a_broken_lesson_exits_2_with_file_and_line(tmp_path):
@@ -83,7 +117,9 @@ def test_a_broken_lesson_exits_2_with_file_and_line(tmp_path):
 def test_a_shipped_lesson_by_name(tmp_path):
     result = grade_cli("wall-stop", ROOT / "lessons" / "wall-stop" / "solution.py", "--quiet")
     assert result.returncode == 0, result.stdout + result.stderr
-    assert "40/40 (graded)" in result.stdout
+    assert "40/40 (graded)" in result.stdout  # the hidden variants of the checkout are graded
+    assert "hidden variant 3: 10/10, passed" in result.stdout
+    assert not any(f"{name}:" in result.stdout for name in ("near", "across", "noisy"))
 
 
 def test_a_broken_check_of_the_lessons_own_stops_grading_loudly(tmp_path):

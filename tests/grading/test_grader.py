@@ -9,7 +9,7 @@ from ev3sim2d.grading.grader import grade, load_results
 from ev3sim2d.grading.lesson import load_lesson
 from ev3sim2d.grading.submission import find_submissions
 
-from .lesson_maker import GOOD, SHORT, write_lesson, write_program
+from .lesson_maker import GOOD, HIDDEN, SHORT, write_lesson, write_program
 
 
 @pytest.fixture
@@ -43,6 +43,10 @@ def test_results_are_written_as_each_submission_finishes(lesson, programs, tmp_p
     assert [len(saved) for _, saved in seen] == [1, 2, 3]
     data = json.loads(results_file.read_text())
     assert data["lesson"] == "lesson" and data["max_score"] == 10
+    assert data["variants"] == [
+        {"name": "room", "hidden": False, "world": "room"},
+        {"name": "hidden variant 1", "hidden": True},
+    ]
     carol = data["submissions"][2]
     assert carol["status"] == "error" and carol["score"] == 0
     assert "ValueError: oops (line 1)" in carol["variants"][0]["message"]
@@ -88,6 +92,20 @@ def test_spawned_workers_grade_as_forked_ones_do(lesson, programs):
     forked = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=True).results]
     spawned = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=False).results]
     assert forked == spawned
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="compares with forked workers")
+def test_spawned_workers_grade_hidden_variants_from_a_teachers_private_folder(programs, tmp_path):
+    private = tmp_path / "private"
+    private.mkdir()
+    (private / "hidden.yaml").write_text(HIDDEN.replace("seed: 3", "seed: 3\n    time_s: 0.2"))
+    lesson = load_lesson(write_lesson(tmp_path / "lesson2", hidden_text=None), hidden=private)
+    subs = find_submissions([programs / "alice.py"])
+    forked = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=True).results]
+    spawned = [r.to_dict() for r in grade(lesson, subs, jobs=2, use_fork=False).results]
+    assert forked == spawned
+    assert forked[0]["variants"][1]["name"] == "hidden variant 1"
+    assert forked[0]["variants"][1]["score"] == 0  # too short a time: the private variant was graded
 
 
 def test_failed_runs_are_handed_on_with_their_trace(lesson, programs):

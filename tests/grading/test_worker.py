@@ -58,9 +58,8 @@ def test_good_programs_around_them_are_graded_correctly(class_run):
     good = class_run["a_good.py"]
     assert good.status == "graded" and good.full_marks
     short = class_run["z_short.py"]
-    assert (
-        short.status == "graded" and short.score == 2 and short.max_score == 10
-    )  # finished, in both variants
+    assert short.status == "graded" and short.score == 0 and short.max_score == 10  # the goal is not met
+    assert [c.gated for c in short.variants[0].checks] == [False, False, True]  # finished is held back
 
 
 def test_os_exit_ends_only_the_program(class_run):

@@ -1,18 +1,23 @@
-"""Every shipped lesson, graded by the grader itself: the solution gets full marks in every variant,
-the starter does not, and each typical wrong program loses points on the check its docstring names
-(`Loses: check, check`).  Each lesson is graded once (all its programs, two at a time)."""
+"""Every lesson of the repository, graded by the grader itself: the solution gets full marks in every
+variant (hidden ones too), each typical wrong program loses points on the check its docstring names
+(`Loses: check, check`), and a program that does not solve the task (one that does nothing, only prints,
+only spins on the spot, drives straight ahead for ever, or the starter) scores nothing.  Each lesson
+is graded once (all its programs, two at a time)."""
 
 import ast
 import re
 from pathlib import Path
 
 import pytest
+import yaml
 
 from ev3sim2d.grading.grader import grade
-from ev3sim2d.grading.lesson import list_shipped_lessons, load_lesson, shipped_lessons_dir
+from ev3sim2d.grading.lesson import HIDDEN_DIR, HIDDEN_FILE, LESSON_FILE, list_shipped_lessons, load_lesson
 from ev3sim2d.grading.submission import find_submissions
+from ev3sim2d.world.maze_file import shipped_mazes_dir
 
-LESSONS = list_shipped_lessons()
+LESSONS_DIR = Path(__file__).resolve().parents[2] / "lessons"  # the repository's: with hidden/, solutions
+LESSONS = sorted(p.parent.name for p in LESSONS_DIR.glob(f"*/{LESSON_FILE}"))
 REQUIRED = [
     "square",
     "wall-stop",
@@ -24,11 +29,30 @@ REQUIRED = [
     "find-color",
     "odometry",
 ]
+DRIVE = """\
+import time
+from ev3dev2.motor import OUTPUT_B, OUTPUT_C, MoveTank, SpeedPercent
+tank = MoveTank(OUTPUT_B, OUTPUT_C)
+tank.on(SpeedPercent({left}), SpeedPercent({right}))
+while True:
+    time.sleep(0.1)
+"""
+DOES_NOT_SOLVE = {
+    "does_nothing.py": "",
+    "only_prints.py": 'print("hello")\n',
+    "spins_in_place.py": DRIVE.format(left=30, right=-30),
+    "drives_straight_for_ever.py": DRIVE.format(left=30, right=30),
+}
+NOT_SOLVING = [*DOES_NOT_SOLVE, "starter"]
 _graded: dict[str, dict] = {}
 
 
+def lesson_dir(lesson_id: str) -> Path:
+    return LESSONS_DIR / lesson_id
+
+
 def wrong_programs(lesson_id: str) -> list[Path]:
-    return sorted((shipped_lessons_dir() / lesson_id / "wrong").glob("*.py"))
+    return sorted((lesson_dir(lesson_id) / "wrong").glob("*.py"))
 
 
 def named_losses(path: Path) -> list[str]:
@@ -39,34 +63,60 @@ def named_losses(path: Path) -> list[str]:
     return [name.strip() for name in match.group(1).split(",")]
 
 
-def graded(lesson_id: str) -> dict:
-    """{program file name or wrong/NAME: SubmissionResult} for every program of the lesson."""
+@pytest.fixture(scope="module")
+def not_solving_folder(tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("not-solving")
+    for name, source in DOES_NOT_SOLVE.items():
+        (folder / name).write_text(source)
+    return folder
+
+
+def graded(lesson_id: str, not_solving: Path) -> dict:
+    """{"solution", "starter", "wrong/NAME" or a DOES_NOT_SOLVE name: SubmissionResult} for the lesson."""
     if lesson_id not in _graded:
-        lesson = load_lesson(lesson_id)
-        programs = [lesson.solution, lesson.starter, *wrong_programs(lesson_id)]
+        lesson = load_lesson(lesson_dir(lesson_id))
+        trivial = [not_solving / name for name in DOES_NOT_SOLVE]
+        programs = [lesson.solution, lesson.starter, *wrong_programs(lesson_id), *trivial]
         results = grade(lesson, find_submissions(programs), jobs=2).results
-        names = ["solution", "starter", *[f"wrong/{p.name}" for p in wrong_programs(lesson_id)]]
+        names = [
+            "solution",
+            "starter",
+            *[f"wrong/{p.name}" for p in wrong_programs(lesson_id)],
+            *DOES_NOT_SOLVE,
+        ]
         _graded[lesson_id] = dict(zip(names, results, strict=True))
     return _graded[lesson_id]
 
 
 def test_the_required_lessons_are_shipped():
     assert set(REQUIRED) <= set(LESSONS)
+    assert set(REQUIRED) <= set(list_shipped_lessons())
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
 def test_a_lesson_has_its_files_and_variants(lesson_id):
-    lesson = load_lesson(lesson_id)
+    lesson = load_lesson(lesson_dir(lesson_id))
     for name in ("README.md", "starter.py", "solution.py"):
         assert (lesson.folder / name).is_file(), name
     assert len(lesson.variants) >= 2
-    assert any(v.hidden for v in lesson.variants), "at least one hidden variant"
+    assert lesson.hidden_variants(), "at least one hidden variant"
+    assert lesson.hidden_file == lesson.folder / HIDDEN_DIR / HIDDEN_FILE
     assert len(wrong_programs(lesson_id)) >= 2, "at least two typical wrong programs"
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
+def test_every_check_says_whether_it_is_a_goal(lesson_id):
+    data = yaml.safe_load((lesson_dir(lesson_id) / LESSON_FILE).read_text())
+    for check in data["checks"]:
+        assert isinstance(check.get("goal"), bool), (
+            f"check {check.get('name')} does not say `goal: true|false`"
+        )
+    assert load_lesson(lesson_dir(lesson_id)).goal_checks
+
+
+@pytest.mark.parametrize("lesson_id", LESSONS)
 def test_the_readme_shows_the_visible_variants_only(lesson_id):
-    lesson = load_lesson(lesson_id)
+    lesson = load_lesson(lesson_dir(lesson_id))
     readme = (lesson.folder / "README.md").read_text()
     for variant in lesson.variants:
         mentioned = re.search(rf"`{re.escape(variant.name)}`|\b{re.escape(variant.name)}\.png\b", readme)
@@ -80,8 +130,41 @@ def test_the_readme_shows_the_visible_variants_only(lesson_id):
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
+def test_what_only_hidden_variants_need_lives_in_the_hidden_folder(lesson_id):
+    lesson = load_lesson(lesson_dir(lesson_id))
+    hidden_dir = lesson.folder / HIDDEN_DIR
+
+    def needs(variant) -> list[Path]:
+        robot = variant.robot.source if variant.robot is not None else None
+        return [Path(p).resolve() for p in (variant.world_path, robot) if p is not None]
+
+    public = {path for variant in lesson.visible_variants() for path in needs(variant)}
+    only_hidden = []
+    for variant in lesson.hidden_variants():
+        for path in needs(variant):
+            if (
+                path in public
+                or path.is_relative_to(shipped_mazes_dir())
+                or not path.is_relative_to(lesson.folder)
+            ):
+                continue
+            assert path.is_relative_to(hidden_dir), (
+                f"{path.name}, needed by a hidden variant only, is not in hidden/"
+            )
+            only_hidden.append(path.name)
+    public_text = [p for p in lesson.folder.rglob("*") if p.is_file() and not p.is_relative_to(hidden_dir)]
+    for path in public_text:
+        if path.suffix in (".md", ".yaml", ".py"):
+            text = path.read_text()
+            for name in only_hidden:
+                assert name not in text, (
+                    f"{path.relative_to(lesson.folder)} names the hidden world file {name}"
+                )
+
+
+@pytest.mark.parametrize("lesson_id", LESSONS)
 def test_programs_are_plain_ev3dev2_programs(lesson_id):
-    folder = shipped_lessons_dir() / lesson_id
+    folder = lesson_dir(lesson_id)
     for path in [folder / "starter.py", folder / "solution.py", *wrong_programs(lesson_id)]:
         tree = ast.parse(path.read_text())
         modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
@@ -93,8 +176,9 @@ def test_programs_are_plain_ev3dev2_programs(lesson_id):
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
-def test_the_solution_gets_full_marks_in_every_variant(lesson_id):
-    result = graded(lesson_id)["solution"]
+def test_the_solution_gets_full_marks_in_every_variant(lesson_id, not_solving_folder):
+    result = graded(lesson_id, not_solving_folder)["solution"]
+    assert len(result.variants) == len(load_lesson(lesson_dir(lesson_id)).variants)
     for variant in result.variants:
         failed = [f"{c.name}: {c.message}" for c in variant.failed_checks()]
         assert variant.status == "graded" and not failed, f"{variant.name}: {variant.message}; {failed}"
@@ -102,20 +186,33 @@ def test_the_solution_gets_full_marks_in_every_variant(lesson_id):
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
-def test_the_starter_runs_but_does_not_solve_the_task(lesson_id):
-    result = graded(lesson_id)["starter"]
+def test_the_starter_runs(lesson_id, not_solving_folder):
+    result = graded(lesson_id, not_solving_folder)["starter"]
     assert result.status == "graded", result.first_failure()
-    assert result.score < result.max_score
+
+
+@pytest.mark.parametrize("program", NOT_SOLVING)
+@pytest.mark.parametrize("lesson_id", LESSONS)
+def test_a_program_that_does_not_solve_the_task_scores_nothing(lesson_id, program, not_solving_folder):
+    result = graded(lesson_id, not_solving_folder)[program]
+    earned = [f"{v.name}: {c.name}: {c.message}" for v in result.variants for c in v.checks if c.points]
+    assert result.score == 0, earned
+    goals = [c for v in result.variants for c in v.checks if c.goal]
+    assert goals and not any(c.passed for c in goals), "a goal check passes without the task being solved"
 
 
 @pytest.mark.parametrize(
     "lesson_id, program", [(lesson, p.name) for lesson in LESSONS for p in wrong_programs(lesson)]
 )
-def test_a_wrong_program_loses_points_on_the_check_that_names_its_mistake(lesson_id, program):
-    result = graded(lesson_id)[f"wrong/{program}"]
-    lesson_checks = {c.name for c in load_lesson(lesson_id).checks}
-    for name in named_losses(shipped_lessons_dir() / lesson_id / "wrong" / program):
+def test_a_wrong_program_loses_points_on_the_check_that_names_its_mistake(
+    lesson_id, program, not_solving_folder
+):
+    result = graded(lesson_id, not_solving_folder)[f"wrong/{program}"]
+    lesson_checks = {c.name for c in load_lesson(lesson_dir(lesson_id)).checks}
+    for name in named_losses(lesson_dir(lesson_id) / "wrong" / program):
         assert name in lesson_checks, f"{program} names {name!r}, not a check of {lesson_id}"
-        lost = [v.name for v in result.variants for c in v.checks if c.name == name and not c.passed]
+        lost = [
+            v.name for v in result.variants for c in v.checks if c.name == name and not (c.passed or c.gated)
+        ]
         assert lost, f"{program} should lose points on {name!r} in some variant"
     assert result.score < result.max_score

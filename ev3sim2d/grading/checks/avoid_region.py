@@ -15,6 +15,7 @@ class AvoidRegion(Check):
 
     KIND = "avoid_region"
     SUMMARY = "the robot never enters a region of the world"
+    PASSES_WITHOUT_MOVING = True
     PARAMS = (
         Param("region", "region", "name of the region in the world file"),
         Param("label", "text", "how messages name the region (default: 'the REGION')", default=None),
@@ -26,5 +27,12 @@ class AvoidRegion(Check):
         inside = np.flatnonzero(region_inside(run.world, self.region, run.track(self.point)))
         if len(inside):
             t = float(run.t[inside[0]])
-            return Outcome(False, f"{what(self.point)} went into {name} at {seconds(t)}", t)
-        return Outcome(True, f"{what(self.point)} kept out of {name}", None)
+            return Outcome(
+                False,
+                f"{what(self.point)} went into {name} at {seconds(t)}",
+                t,
+                f"{what(self.point)} went into {name}",
+            )
+        return Outcome(
+            True, f"{what(self.point)} kept out of {name}", None, f"{what(self.point)} kept out of {name}"
+        )

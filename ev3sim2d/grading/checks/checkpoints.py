@@ -9,6 +9,13 @@ from ..place import read_places, validate_places
 from ..run_record import RunRecord, seconds
 from .reach_region import what
 
+ORDINALS = ("first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth")
+
+
+def ordinal(number: int) -> str:
+    """'the second checkpoint' (words, so that a hidden variant's message holds no numbers)."""
+    return f"the {ORDINALS[number - 1]} checkpoint" if number <= len(ORDINALS) else f"checkpoint {number}"
+
 
 @register
 class Checkpoints(Check):
@@ -49,6 +56,7 @@ class Checkpoints(Check):
                     f"{who} {earlier}never reached checkpoint {number}, {place.describe()}{after}; the closest it "
                     f"came was {distance[closest]:.0f} cm away, at {seconds(float(run.t[closest]))}",
                     float(run.t[closest]),
+                    f"{who} never reached {ordinal(number)}, {place.describe()}",
                 )
             hit = int(reached[0]) + (row if self.in_order else 0)
             times.append(float(run.t[hit]))
@@ -60,8 +68,12 @@ class Checkpoints(Check):
                 False,
                 f"{who} passed every checkpoint, but the last at {seconds(last)}, later than {self.within_s:g} s",
                 last,
+                f"{who} passed every checkpoint, but too late",
             )
         order = " in order" if self.in_order and len(self.places) > 1 else ""
         return Outcome(
-            True, f"{who} passed all {len(self.places)} checkpoints{order}, the last at {seconds(last)}", last
+            True,
+            f"{who} passed all {len(self.places)} checkpoints{order}, the last at {seconds(last)}",
+            last,
+            f"{who} passed every checkpoint{order}",
         )

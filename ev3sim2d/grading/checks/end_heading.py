@@ -44,9 +44,10 @@ class EndHeading(Check):
         side = "left" if off > 0 else "right"
         end = run.end_s
         if abs(off) <= self.within_deg + 1e-9:
-            return Outcome(True, f"ended facing {abs(off):.1f}° from {name}", end)
+            return Outcome(True, f"ended facing {abs(off):.1f}° from {name}", end, f"ended facing {name}")
         return Outcome(
             False,
             f"ended facing {abs(off):.1f}° to the {side} of {name} (at most {self.within_deg:g}° passes)",
             end,
+            f"ended facing too far to the {side} of {name}",
         )

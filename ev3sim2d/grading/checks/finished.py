@@ -19,6 +19,7 @@ class Finished(Check):
 
     KIND = "finished"
     SUMMARY = "the program ends by itself without an error (within a time, if given)"
+    PASSES_WITHOUT_MOVING = True
     PARAMS = (Param("within_s", "seconds", "the program must end by this simulated time", default=None),)
 
     def evaluate(self, run: RunRecord) -> Outcome:
@@ -28,6 +29,7 @@ class Finished(Check):
                 False,
                 f"the program stopped with an error at {seconds(end)}: {describe_error(run.error)}",
                 end,
+                f"the program stopped with an error ({(run.error or {}).get('type', 'an error')})",
             )
         if run.status == "hung":
             return Outcome(
@@ -35,11 +37,22 @@ class Finished(Check):
                 f"the program got stuck at {seconds(end)} in a loop that never uses the robot or the clock "
                 "(a loop without a sensor read, a motor command or a sleep?)",
                 end,
+                "the program got stuck in a loop that never uses the robot or the clock",
             )
         if run.status != "finished":
-            return Outcome(False, f"the program was still running at the time limit of {seconds(end)}", end)
+            return Outcome(
+                False,
+                f"the program was still running at the time limit of {seconds(end)}",
+                end,
+                "the program was still running at the time limit",
+            )
         if self.within_s is not None and end > self.within_s + 1e-9:
             return Outcome(
-                False, f"the program finished at {seconds(end)}, later than {self.within_s:g} s", end
+                False,
+                f"the program finished at {seconds(end)}, later than {self.within_s:g} s",
+                end,
+                "the program finished too late",
             )
-        return Outcome(True, f"the program finished at {seconds(end)} without an error", end)
+        return Outcome(
+            True, f"the program finished at {seconds(end)} without an error", end, "the program finished"
+        )

@@ -35,6 +35,7 @@ class Lap(Check):
                 f"did not go round: the robot never got {self.min_away_cm:g} cm from its start "
                 f"(at most {distance.max():.0f} cm)",
                 end,
+                "did not go round: the robot never got far enough from its start",
             )
         back = np.flatnonzero((distance <= self.radius_cm) & (travelled >= self.min_path_cm))
         back = back[back > away[0]]
@@ -44,8 +45,14 @@ class Lap(Check):
                 f"did not come back to the start by {seconds(end)} (it travelled {travelled[-1]:.0f} cm and "
                 f"ended {distance[-1]:.0f} cm from the start)",
                 end,
+                "did not come back to the start",
             )
         t = float(run.t[back[0]])
         if self.within_s is not None and t > self.within_s + 1e-9:
-            return Outcome(False, f"completed a lap at {seconds(t)}, later than {self.within_s:g} s", t)
-        return Outcome(True, f"completed a lap at {seconds(t)}", t)
+            return Outcome(
+                False,
+                f"completed a lap at {seconds(t)}, later than {self.within_s:g} s",
+                t,
+                "completed a lap, but too late",
+            )
+        return Outcome(True, f"completed a lap at {seconds(t)}", t, "completed a lap")

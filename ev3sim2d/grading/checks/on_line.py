@@ -65,7 +65,12 @@ class OnLine(Check):
         on, steps, t = on[first : last + 1], steps[first : last + 1], run.t[first : last + 1]
         path = float(steps[1:].sum())
         if path < 1.0:
-            return Outcome(False, "the robot hardly moved, so it did not follow the line", float(t[-1]))
+            return Outcome(
+                False,
+                "the robot hardly moved, so it did not follow the line",
+                float(t[-1]),
+                "the robot hardly moved, so it did not follow the line",
+            )
         fraction = float(steps[1:][on[1:]].sum()) / path
         stretches = off_stretches(on)
         end_s = float(t[-1])
@@ -75,7 +80,10 @@ class OnLine(Check):
             limit = self.max_off_s if self.max_off_s is not None else 2.0
             if b == len(on) - 1 and lost_s > limit:
                 return Outcome(
-                    False, f"left the line at {seconds(float(t[a]))} and did not find it again", float(t[a])
+                    False,
+                    f"left the line at {seconds(float(t[a]))} and did not find it again",
+                    float(t[a]),
+                    "left the line and did not find it again",
                 )
         if self.max_off_s is not None and stretches:
             longest = max(stretches, key=lambda ab: t[ab[1]] - t[ab[0]])
@@ -87,6 +95,7 @@ class OnLine(Check):
                     f"was off the line from {seconds(float(t[a]))} to {seconds(float(t[b]))} "
                     f"({length:.1f} s; at most {self.max_off_s:g} s passes)",
                     float(t[a]),
+                    "was off the line for too long",
                 )
         if fraction + 1e-9 < self.min_fraction:
             a = stretches[0][0] if stretches else 0
@@ -95,9 +104,13 @@ class OnLine(Check):
                 f"was over the line for only {fraction:.0%} of its path (at least {self.min_fraction:.0%} passes); "
                 f"it first left it at {seconds(float(t[a]))}",
                 float(t[a]),
+                "was over the line for too little of its path",
             )
         return Outcome(
-            True, f"was over the line for {fraction:.0%} of its path, until {seconds(end_s)}", end_s
+            True,
+            f"was over the line for {fraction:.0%} of its path, until {seconds(end_s)}",
+            end_s,
+            "stayed over the line",
         )
 
     def _last_row(self, run: RunRecord) -> int:

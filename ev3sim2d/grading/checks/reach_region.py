@@ -38,12 +38,14 @@ class ReachRegion(Check):
                     False,
                     f"{who} reached {name} at {seconds(t)}, later than {self.within_s:g} s",
                     t,
+                    f"{who} reached {name}, but too late",
                 )
-            return Outcome(True, f"{who} reached {name} at {seconds(t)}", t)
+            return Outcome(True, f"{who} reached {name} at {seconds(t)}", t, f"{who} reached {name}")
         closest = int(np.argmin(distance))
         t = float(run.t[closest])
         return Outcome(
             False,
             f"{who} never reached {name}; the closest it came was {distance[closest]:.0f} cm away, at {seconds(t)}",
             t,
+            f"{who} never reached {name}",
         )

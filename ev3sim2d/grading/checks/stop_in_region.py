@@ -31,14 +31,18 @@ class StopInRegion(Check):
                 False,
                 f"the robot was still driving at the end ({seconds(end)}); stop the motors in {name}",
                 end,
+                f"the robot was still driving at the end; stop the motors in {name}",
             )
         stopped = run.last_moved_s()
         if distance <= 0:
-            return Outcome(True, f"{who} stopped in {name} at {seconds(stopped)}", stopped)
+            return Outcome(
+                True, f"{who} stopped in {name} at {seconds(stopped)}", stopped, f"{who} stopped in {name}"
+            )
         elsewhere = [other for other in run.world.regions_at(x, y) if other != self.region]
         where = f" in the {elsewhere[0]} region" if elsewhere else ""
         return Outcome(
             False,
             f"{who} stopped{where} at {seconds(stopped)}, {distance:.0f} cm from {name}",
             stopped,
+            f"{who} stopped outside {name}",
         )

@@ -14,6 +14,7 @@ class Stopped(Check):
     KIND = "stopped"
     SUMMARY = "the robot stands still at the end of the run, its motors stopped (by a given time, if given)"
     PARAMS = (Param("by_s", "seconds", "the robot must not move after this simulated time", default=None),)
+    PASSES_WITHOUT_MOVING = True
 
     def evaluate(self, run: RunRecord) -> Outcome:
         end = run.end_s
@@ -23,10 +24,14 @@ class Stopped(Check):
                 f"the motors were still driving when the run ended at {seconds(end)} "
                 "(a real robot would drive on: stop the motors)",
                 end,
+                "the motors were still driving when the run ended",
             )
         last = run.last_moved_s()
         if self.by_s is not None and last > self.by_s + 1e-9:
             return Outcome(
-                False, f"the robot last moved at {seconds(last)}, later than {self.by_s:g} s", last
+                False,
+                f"the robot last moved at {seconds(last)}, later than {self.by_s:g} s",
+                last,
+                "the robot stopped too late",
             )
-        return Outcome(True, f"the robot stopped at {seconds(last)}", last)
+        return Outcome(True, f"the robot stopped at {seconds(last)}", last, "the robot stopped")

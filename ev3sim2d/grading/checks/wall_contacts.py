@@ -15,6 +15,7 @@ class WallContacts(Check):
 
     KIND = "wall_contacts"
     SUMMARY = "the robot touches walls at most N times (0 by default), for at most a total time if given"
+    PASSES_WITHOUT_MOVING = True
     PARAMS = (
         Param("max", "count", "the most contacts that pass (0: never touch a wall)", default=0),
         Param("max_touch_s", "seconds", "the longest total time touching walls that passes", default=None),
@@ -27,18 +28,25 @@ class WallContacts(Check):
         dt = np.diff(run.t)
         touch_s = float(dt[touching[1:]].sum()) if len(dt) else 0.0
         if count == 0:
-            return Outcome(True, "never touched a wall", None)
+            return Outcome(True, "never touched a wall", None, "never touched a wall")
         first = float(run.t[starts[0]])
         times = "once" if count == 1 else f"{count} times"
         if count > self.max:
             limit = "no contact passes" if self.max == 0 else f"at most {self.max} pass"
             late = float(run.t[starts[self.max]])
             moment = f"first at {seconds(first)}" if self.max == 0 else f"the one too many at {seconds(late)}"
-            return Outcome(False, f"touched a wall {times}, {moment} ({limit})", late)
+            brief = "the robot touched a wall" if self.max == 0 else "the robot touched walls too often"
+            return Outcome(False, f"touched a wall {times}, {moment} ({limit})", late, brief)
         if self.max_touch_s is not None and touch_s > self.max_touch_s + 1e-9:
             return Outcome(
                 False,
                 f"touched walls for {touch_s:.1f} s in all, from {seconds(first)} (at most {self.max_touch_s:g} s passes)",
                 first,
+                "the robot touched walls for too long",
             )
-        return Outcome(True, f"touched a wall {times} (first at {seconds(first)}), within what passes", first)
+        return Outcome(
+            True,
+            f"touched a wall {times} (first at {seconds(first)}), within what passes",
+            first,
+            "touched walls, within what passes",
+        )

@@ -46,11 +46,15 @@ class WallDistance(Check):
         wanted = f"{self.min_cm:g} to {self.max_cm:g} cm"
         if self.min_cm - 1e-9 <= distance <= self.max_cm + 1e-9:
             return Outcome(
-                True, f"ended with {what} {distance:.1f} cm from the wall ahead ({wanted} passes)", end
+                True,
+                f"ended with {what} {distance:.1f} cm from the wall ahead ({wanted} passes)",
+                end,
+                f"ended with {what} at the right distance from the wall ahead",
             )
         side = "too close to" if distance < self.min_cm else "too far from"
         return Outcome(
             False,
             f"ended at {seconds(end)} {side} the wall: {what} was {distance:.1f} cm from it, not {wanted}",
             end,
+            f"ended with {what} {side} the wall ahead",
         )
