@@ -4,6 +4,10 @@ The repository keeps `mazes/` and the `ev3dev2/` shim at its top level (for peop
 edit). Installing them as top-level packages would shadow a real python-ev3dev2, so a wheel gets
 them inside ev3sim2d instead, as `ev3sim2d/_mazes/`, `_lessons/` and `_shim/ev3dev2/`, where only a
 simulated run looks. An editable install reads them from the repository directly.
+
+A wheel is what students install, so its lessons are what students may read: each lesson's `hidden/`
+folder (the hidden variants and their worlds), its reference `solution.py` and its deliberately wrong
+programs (`wrong/`) stay in the repository, for teachers and the tests (tests/lessons/test_wheel.py).
 """
 
 import shutil
@@ -13,6 +17,7 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 ROOT = Path(__file__).resolve().parent
+NOT_SHIPPED_FROM_LESSONS = ("hidden", "solution.py", "wrong", "__pycache__", "*.pyc")
 
 
 class BuildWithWorldsAndShim(build_py):
@@ -21,12 +26,14 @@ class BuildWithWorldsAndShim(build_py):
         if getattr(self, "editable_mode", False):
             return
         target = Path(self.build_lib) / "ev3sim2d"
+        # an earlier build's copy may hold files that are no longer shipped (a hidden world): start afresh
+        shutil.rmtree(target / "_lessons", ignore_errors=True)
         shutil.copytree(ROOT / "mazes", target / "_mazes", dirs_exist_ok=True)
         shutil.copytree(
             ROOT / "lessons",
             target / "_lessons",
             dirs_exist_ok=True,
-            ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+            ignore=shutil.ignore_patterns(*NOT_SHIPPED_FROM_LESSONS),
         )
         shutil.copytree(
             ROOT / "ev3dev2",

@@ -1,0 +1,87 @@
+"""The wheel students install ships the lessons without what must stay with the teacher: no hidden
+variant (a lesson's hidden/ folder), no reference solution, no deliberately wrong program; and the
+lessons it ships still load from its copy (with their visible variants only)."""
+
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SOURCES = ("setup.py", "setup.cfg", "pyproject.toml", "README.md", "ev3sim2d", "ev3dev2", "mazes", "lessons")
+LESSONS = sorted(p.parent.name for p in (ROOT / "lessons").glob("*/lesson.yaml"))
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory) -> Path:
+    """The wheel built by pip from a copy of the sources (an in-tree build would leave build/ behind)."""
+    root = tmp_path_factory.mktemp("wheel")
+    source = root / "source"
+    source.mkdir()
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info")
+    for name in SOURCES:
+        path = ROOT / name
+        if path.is_dir():
+            shutil.copytree(path, source / name, ignore=ignore)
+        else:
+            shutil.copy2(path, source / name)
+    built = subprocess.run(
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(root / "dist"), str(source)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert built.returncode == 0, built.stdout + built.stderr
+    [path] = (root / "dist").glob("ev3sim2d-*.whl")
+    return path
+
+
+@pytest.fixture(scope="module")
+def unpacked(wheel, tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("unpacked")
+    with zipfile.ZipFile(wheel) as archive:
+        archive.extractall(folder)
+    return folder
+
+
+def test_the_wheel_ships_every_lesson_but_no_hidden_variant_solution_or_wrong_program(wheel):
+    names = zipfile.ZipFile(wheel).namelist()
+    lessons = [name for name in names if name.startswith("ev3sim2d/_lessons/")]
+    for lesson_id in LESSONS:
+        assert f"ev3sim2d/_lessons/{lesson_id}/lesson.yaml" in lessons
+        assert f"ev3sim2d/_lessons/{lesson_id}/starter.py" in lessons
+        assert f"ev3sim2d/_lessons/{lesson_id}/README.md" in lessons
+    leaks = [
+        name
+        for name in lessons
+        if "/hidden/" in name
+        or name.endswith("/hidden.yaml")
+        or "/wrong/" in name
+        or name.endswith("/solution.py")
+    ]
+    assert not leaks
+    hidden_worlds = {p.name for p in (ROOT / "lessons").glob("*/hidden/*")}
+    assert not [name for name in lessons if Path(name).name in hidden_worlds]
+
+
+def test_the_shipped_lessons_load_from_the_wheels_copy(unpacked):
+    """In a fresh interpreter that finds ev3sim2d in the unpacked wheel only (not in this checkout)."""
+    script = (
+        "import sys\n"
+        "from ev3sim2d.grading.lesson import list_shipped_lessons, load_lesson, shipped_lessons_dir\n"
+        f"assert str(shipped_lessons_dir()).startswith({str(unpacked)!r}), shipped_lessons_dir()\n"
+        "for lesson_id in list_shipped_lessons():\n"
+        "    lesson = load_lesson(lesson_id)\n"
+        "    assert lesson.variants and not lesson.hidden_variants() and lesson.solution is None\n"
+        "    print(lesson_id, len(lesson.variants))\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(unpacked)}
+    loaded = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=300, env=env, cwd=unpacked
+    )
+    assert loaded.returncode == 0, loaded.stdout + loaded.stderr
+    assert sorted(line.split()[0] for line in loaded.stdout.splitlines()) == LESSONS
