@@ -13,7 +13,7 @@ A hidden variant's result tells no more than its score and what went wrong in wo
 from __future__ import annotations
 
 from .check import Check, Outcome
-from .checks.finished import describe_error
+from .checks.finished import describe_error, stopped_with
 from .lesson import Lesson
 from .result import CheckResult, VariantResult
 from .run_record import RunRecord, seconds
@@ -26,6 +26,14 @@ RUN_STATUS = {
     "interrupted": "error",
 }
 GATED = "counts only once the robot reaches the goal"
+# why a hidden variant's run left nothing to judge, by status: the worker's own words may quote the console
+HIDDEN_NOT_RUN = {
+    "timeout": "the program ran too long, so it was stopped",
+    "memory": "the program used more memory than it may",
+    "output": "the program wrote too much to the console, so it was stopped",
+    "crashed": "the run crashed",
+    "error": "the program could not be started",
+}
 
 
 def run_message(record: RunRecord, status: str, memory_mb: float, hidden: bool = False) -> str:
@@ -38,7 +46,7 @@ def run_message(record: RunRecord, status: str, memory_mb: float, hidden: bool =
         return f"the program ran out of memory{end} (it may use {memory_mb:g} MB); line {error.get('line')}"
     if record.status == "error":
         if hidden:
-            return f"the program stopped with an error ({error.get('type', 'an error')})"
+            return stopped_with(error)
         return f"the program stopped with an error{end}: {describe_error(error)}"
     if record.status == "hung":
         return (
@@ -97,8 +105,11 @@ def score_run(
 
 
 def not_run(lesson: Lesson, variant_index: int, status: str, message: str) -> VariantResult:
-    """A variant whose run left nothing to judge: every check fails, saying why."""
+    """A variant whose run left nothing to judge: every check fails, saying why (in a hidden variant, only
+    by its status: the message may quote what the program wrote to the console)."""
     variant = lesson.variants[variant_index]
+    if variant.hidden:
+        message = HIDDEN_NOT_RUN.get(status, "the run left no result")
     checks = [
         CheckResult(c.name, c.KIND, False, 0.0, c.points, f"not judged: {message}", goal=c.goal)
         for c in lesson.checks

@@ -92,6 +92,7 @@ def class_reports(tmp_path_factory):
         "carol.py": WRONG_WAY,
         "dave.py": "x = 1 / 0\n",
         "erin.py": "import time\ntime.sleep(1.5)\nraise ValueError('the wall is 12.5 cm away')\n",
+        "fred.py": "class WallAt12cm(Exception):\n    pass\n\nraise WallAt12cm()\n",
     }.items():
         write_program(root / "class", name, source)
     grading = grade(lesson, find_submissions([root / "class"]), jobs=2)
@@ -115,7 +116,7 @@ def test_no_report_names_a_hidden_variant_or_its_world(class_reports):
 
 def test_a_hidden_variant_shows_its_score_and_what_went_wrong_in_words_only(class_reports):
     grading, texts = class_reports
-    assert [r.score for r in grading.results] == [10, 0, 0, 0, 0]  # the hidden variant's score counts
+    assert [r.score for r in grading.results] == [10, 0, 0, 0, 0, 0]  # the hidden variant's score counts
     for result in grading.results:
         hidden = result.variants[1]
         assert hidden.name == "hidden variant 1" and hidden.sim_time_s is None
@@ -130,6 +131,9 @@ def test_a_hidden_variant_shows_its_score_and_what_went_wrong_in_words_only(clas
     erin = grading.results[4]
     assert "12.5 cm" in erin.variants[0].message  # a visible variant shows the error in full
     assert erin.variants[1].message == "the program stopped with an error (ValueError)"
+    fred = grading.results[5]  # an exception class of its own could be named after what it measured
+    assert "WallAt12cm" in fred.variants[0].message
+    assert fred.variants[1].message == "the program stopped with an error"
 
 
 def test_the_first_problem_of_a_hidden_variant_is_a_line_without_numbers(class_reports):

@@ -97,6 +97,16 @@ def test_a_hidden_variant_keeps_its_score_and_words_but_no_numbers(lesson):
     ]
 
 
+def test_a_hidden_run_that_left_no_result_says_why_by_its_status_only(lesson):
+    from ev3sim2d.grading.scoring import not_run
+
+    said = "the run ended without a result (exit status 4: the wall is 53 cm away)"
+    visible, hidden = not_run(lesson, 0, "crashed", said), not_run(lesson, 1, "crashed", said)
+    assert visible.message == said and visible.checks[0].message == f"not judged: {said}"
+    assert hidden.message == "the run crashed" and hidden.name == "hidden variant 1"
+    assert all("53" not in c.message for c in hidden.checks) and hidden.score == 0
+
+
 def test_a_check_without_a_brief_message_says_passed_or_its_summary():
     class Custom(Check):
         KIND = "custom"
