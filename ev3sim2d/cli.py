@@ -6,9 +6,9 @@ import argparse
 import os
 import sys
 
-from .commands import edit, grade, mazes, render, run, show
+from .commands import doctor, edit, grade, mazes, render, run, show
 
-COMMANDS = [run, mazes, grade, render, show, edit]  # a new subcommand: a module in commands/, one entry here
+COMMANDS = [run, mazes, grade, render, show, edit, doctor]  # a new subcommand: a module in commands/, one entry here
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -16,6 +16,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="ev3sim2d",
         description="Run unmodified python-ev3dev2 programs on a simulated EV3 robot in a 2D grid world.",
     )
+    parser.add_argument("--version", action=doctor.VersionAction)
     sub = parser.add_subparsers(dest="command", required=True)
     for command in COMMANDS:
         command.add_arguments(sub.add_parser(command.NAME, help=command.HELP, description=command.HELP))
