@@ -97,6 +97,9 @@ class BrickPort:
                     self.marker = tick
             elif kind == "p":
                 self._print(op)
+            elif kind == "@":
+                if len(op) != 2 or type(op[1]) is not int or op[1] < self.time_us:
+                    raise ProtocolError("a heartbeat is [@, t_us], and time does not go back")
             elif kind == "k":
                 self._define(op)
             elif kind == "R":

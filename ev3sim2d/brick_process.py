@@ -66,9 +66,17 @@ class BrickProcess:
     exit_code: int | None = None
     notes: list[str] = field(default_factory=list)
 
-    def stop(self) -> None:
-        """Kill the brick and everything it started, reap it, remove its scratch folder."""
+    def stop(self, patience_s: float = 0.0) -> None:
+        """Kill the brick and everything it started, reap it, remove its scratch folder.
+
+        patience_s: how long a brick that is ending anyway (it said so, or its connection is gone)
+        may take to end by itself, so that its exit status says how it ended."""
         self.channel.close()
+        if patience_s > 0:
+            try:
+                self.popen.wait(timeout=patience_s)
+            except subprocess.TimeoutExpired:
+                pass
         try:
             os.killpg(self.popen.pid, signal.SIGKILL)
         except (ProcessLookupError, PermissionError, OSError):
@@ -195,12 +203,20 @@ def brick_environment(scratch: Path) -> dict[str, str]:
     }
 
 
-def start_brick(readable: list[Path], shared_memory: bool = True) -> tuple[BrickProcess, list[str]]:
-    """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's)."""
+def start_brick(
+    readable: list[Path], shared_memory: bool = True, scratch_in: Path | None = None
+) -> tuple[BrickProcess, list[str]]:
+    """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's).
+
+    scratch_in: the folder to make the brick's scratch folder in (default: the system's temporary
+    folder); a grading worker uses its job folder, which the grader removes even if the worker is
+    killed."""
     _compile_once()
-    scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-"))
+    scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
     if os.geteuid() == 0:
         os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes
+        if scratch_in is not None:
+            _let_through(Path(scratch_in))
     console = scratch / CONSOLE_FILE
     ours, theirs = socket.socketpair()
     memory_fd = create_memory() if shared_memory and shared_memory_available() else -1
@@ -226,6 +242,20 @@ def start_brick(readable: list[Path], shared_memory: bool = True) -> tuple[Brick
         channel = Channel(ours)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
     return BrickProcess(popen, channel, scratch, console), read_paths
+
+
+def _let_through(folder: Path) -> None:
+    """Let the brick's unprivileged user pass through the folders above its scratch folder (not list
+    or read them: its sandbox still allows nothing there)."""
+    for part in [folder, *folder.parents]:
+        try:
+            mode = part.stat().st_mode
+            if not mode & 0o001:
+                os.chmod(part, mode | 0o001)
+        except OSError:
+            return
+        if part == Path(tempfile.gettempdir()):
+            return
 
 
 def console_tail(path: Path) -> str:

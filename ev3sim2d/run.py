@@ -31,6 +31,13 @@ _real_perf_counter = time.perf_counter
 _monotonic = time.monotonic
 START_TIMEOUT_S = 60.0  # a brick must be ready (interpreter, shim, sandbox) within this much real time
 LIMIT_SIGNALS = {"SIGXCPU": "cpu", "SIGXFSZ": "output"}
+CRASH_SIGNALS = {
+    "SIGSEGV": "a segmentation fault",
+    "SIGABRT": "an abort",
+    "SIGBUS": "a bus error",
+    "SIGILL": "an illegal instruction",
+    "SIGFPE": "a floating point exception",
+}
 
 
 @dataclass
@@ -69,6 +76,7 @@ def run_programs(
     readable: list[list[Path]] | None = None,
     limits: BrickLimits | None = None,
     sandbox: bool = True,
+    scratch_in: Path | None = None,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -76,6 +84,7 @@ def run_programs(
     readable: per program, what its brick may read besides Python itself (default: the program's folder).
     limits: CPU time, memory, file sizes and processes of each brick.
     sandbox: False only for measuring what the sandbox costs; a program is never graded without one.
+    scratch_in: where each brick's scratch folder is made (default: the system's temporary folder).
     """
     loaded = [Program(p) for p in programs]  # ProgramError: the caller reports it
     if len(loaded) > len(world.starts):
@@ -99,7 +108,7 @@ def run_programs(
         for i, program in enumerate(loaded):
             path = program.path.resolve()
             may_read = readable[i] if readable else [path.parent]
-            brick, read_paths = start_brick(list(may_read))
+            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in)
             bricks.append(brick)
             config = {
                 "protocol": PROTOCOL,
@@ -136,8 +145,10 @@ def run_programs(
         session = session or Session(sim, ports, limit_us, hang_after_s)
         session.interrupted = True
     finally:
-        for brick in bricks:
-            brick.stop()
+        for i, brick in enumerate(bricks):
+            gone = ports[i].gone if i < len(ports) else "start"
+            ending = gone is None or gone.startswith(("gone", "start"))
+            brick.stop(patience_s=2.0 if ending else 0.0)
     result = _result(sim, loaded, ports, bricks, wall, session)
     del sim, ports, session
     gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
@@ -196,6 +207,8 @@ def _crash(port: BrickPort, brick: BrickProcess) -> tuple[str, str | None]:
         return LIMIT_SIGNALS[name], LIMIT_SIGNALS[name]
     if "MemoryError" in console:
         return "memory", "memory"
+    if name in CRASH_SIGNALS:
+        return f"the Python interpreter running the program crashed ({CRASH_SIGNALS[name]}, {name})", None
     if name is not None:
         return f"the program's process was killed by {name}", None
     last = console.splitlines()[-1] if console else "no message"

@@ -17,6 +17,7 @@ import time
 
 from .brick_port import BrickPort
 from .protocol import ConnectionGone, ProtocolError, wait_for_any
+from .protocol.stream import cores_idle
 from .simulation import Simulation
 
 _monotonic = time.monotonic
@@ -173,7 +174,7 @@ class Session:
                 self.drop(port, _why(err))
                 return
         else:
-            spin_end = _perf_counter() + SPIN_S
+            spin_end = _perf_counter() + (SPIN_S if cores_idle() else 0.0)
             heard = False
             while not heard:
                 for port in ports:

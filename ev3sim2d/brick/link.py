@@ -26,6 +26,7 @@ a loop of 4 writes and 2 reads took 30-40 ms with an older binding.
 from __future__ import annotations
 
 import errno
+import time
 from threading import get_ident
 
 from ..protocol import ProtocolError
@@ -35,7 +36,9 @@ READ_US = 2_000  # reading one attribute (a sensor value, a motor's position or 
 WRITE_US = 3_000  # writing one attribute (a speed, a command, a mode)
 FIND_US = 2_000  # looking a device up when it is constructed
 
+HEARTBEAT_S = 0.5  # real seconds between two messages at most, while the clock moves
 _UNKNOWN = object()
+_perf_counter = time.perf_counter  # the real clock (the program's is virtual)
 
 
 class OutsideTask(RuntimeError):
@@ -99,6 +102,8 @@ class BrickLink:
         self.written: set[int] = set()  # devices written since the last tick marker
         self.ops: list = []
         self.stopped: str | None = None  # why the simulator ended the run
+        self.last_sent = _perf_counter()
+        scheduler.on_progress = self.progress
 
     # ------------------------------------------------------------ plumbing
     def _key(self, class_name: str, device_name: str, attribute: str) -> int:
@@ -121,9 +126,17 @@ class BrickLink:
                 "start threads with threading or _thread inside the program"
             )
 
+    def progress(self) -> None:
+        """The clock moves between ticks (a program computing with short sleeps): now and then say so,
+        so that the simulator does not take the brick for hung."""
+        if _perf_counter() - self.last_sent > HEARTBEAT_S:
+            self.ops.append(["@", self.scheduler.now_us])
+            self.flush()
+
     def flush(self) -> None:
         """Send the queued ops (no answer wanted)."""
         if self.ops:
+            self.last_sent = _perf_counter()
             ops, self.ops = self.ops, []
             try:
                 self.channel.send(["ops", ops])
@@ -246,6 +259,7 @@ class BrickLink:
             else:
                 self.ops.append(["w", key, value])
         self.scheduler.spend(WRITE_US)
+
     def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:
         self._task()
         before = self._value(class_name, device_name, attribute)

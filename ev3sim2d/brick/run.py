@@ -50,7 +50,11 @@ class BrickRun:
         self.scheduler = Scheduler(config["tick_us"], self._tick, config.get("limit_us"), batch_ticks=True)
         self.link = BrickLink(self.channel, self.scheduler)
         self.env = BrickEnvironment(
-            self.scheduler, self.link, config.get("seed", 0), self.program_path, config.get("program_dirs", [])
+            self.scheduler,
+            self.link,
+            config.get("seed", 0),
+            self.program_path,
+            config.get("program_dirs", []),
         )
         self.env.install()
         for name in SHIM_MODULES:
@@ -93,4 +97,3 @@ class BrickRun:
                     return
         except ProtocolError:
             pass
-

@@ -82,6 +82,7 @@ class Scheduler:
             raise ValueError("tick_us must be positive")
         self.tick_us = tick_us
         self.batch_ticks = batch_ticks
+        self.on_progress: Callable[[], None] | None = None  # time passed between ticks
         self.now_us = 0
         self.next_tick_us = tick_us
         self.limit_us = limit_us
@@ -177,6 +178,8 @@ class Scheduler:
         if not ready or ready[0][0] > target:
             if target < self.next_tick_us and (self.limit_us is None or target <= self.limit_us):
                 self.now_us = target  # the common case: no tick, nobody else due
+                if self.on_progress is not None:
+                    self.on_progress()
                 return
             self._advance_to(target)
             return

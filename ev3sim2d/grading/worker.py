@@ -185,7 +185,17 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
     readable = [[Path(job.readable or Path(job.entry).parent)]]
     try:
         result = run_programs(
-            [job.entry], world, None, job.time_s, job.seed, job.hang_s, None, None, readable, limits
+            [job.entry],
+            world,
+            None,
+            job.time_s,
+            job.seed,
+            job.hang_s,
+            None,
+            None,
+            readable,
+            limits,
+            scratch_in=folder,
         )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})

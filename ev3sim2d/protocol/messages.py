@@ -31,6 +31,7 @@ Ops (inside "ops")
     ["c", t_us, feature, [args]]           a brick feature (sound, display), not answered
     ["C", t_us, feature, [args]]           a brick feature (buttons, devices, volume), answered
     ["p", t_us, stream, text]              a printed line
+    ["@", t_us]                            the clock moves between ticks (at most every 0.5 s of real time)
     ["q"]                                  end of a batch that wants a reply
 
 Values are text; a read that fails is [errno, message] instead.  A write rule is

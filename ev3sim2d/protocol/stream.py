@@ -2,11 +2,13 @@
 
 Waiting for a message first spins for a short while on non-blocking reads (a
 brick and its simulator on one machine answer each other within microseconds,
-far sooner than a process that went to sleep is woken), then blocks.
+far sooner than a process that went to sleep is woken), then blocks; on a
+machine whose cores are all busy it blocks at once.
 """
 
 from __future__ import annotations
 
+import os
 import select
 import socket
 import time
@@ -15,6 +17,21 @@ from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode, 
 
 _perf_counter = time.perf_counter  # the real clock, whatever a program does to `time` later
 _DONTWAIT = getattr(socket, "MSG_DONTWAIT", 0)
+_CORES = os.cpu_count() or 1
+_load = {"checked": -1.0, "idle": True}
+
+
+def cores_idle() -> bool:
+    """Whether this machine has a core to spare for spinning (looked up at most once a second):
+    on a busy machine a spinning process only takes the time its peer needs."""
+    now = _perf_counter()
+    if now - _load["checked"] > 1.0:
+        _load["checked"] = now
+        try:
+            _load["idle"] = os.getloadavg()[0] < _CORES - 0.5
+        except OSError:
+            _load["idle"] = True
+    return _load["idle"]
 
 
 class Channel:
@@ -58,7 +75,7 @@ class Channel:
         message = self._take()
         if message is not None:
             return message
-        if self.spin_s:
+        if self.spin_s and cores_idle():
             end = _perf_counter() + self.spin_s
             while True:
                 if self._fill(_DONTWAIT):
