@@ -23,6 +23,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..brick_process import become_subreaper, kill_orphans
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -139,6 +140,7 @@ def grade(
     run that did not pass every check, e.g. to keep its trace or render a video.
     """
     started = time.monotonic()
+    become_subreaper()  # a brick's orphans come back here, and are ended (kill_orphans)
     jobs = max(1, jobs or default_jobs())
     use_fork = can_fork() if use_fork is None else use_fork
     results_file = Path(results_path) if results_path else None
@@ -182,6 +184,7 @@ def grade(
                     submission=index,
                     variant=v,
                     entry=str(submission.entry.resolve()),
+                    readable=str(submission.path.resolve()),
                     folder=str(workdir / f"s{index}-v{v}"),
                     lesson=lesson_folder,
                     variant_name=variant.name,
@@ -218,6 +221,7 @@ def grade(
                         worker.kill("wall")
                     continue
                 running.remove(worker)
+                kill_orphans(keep={w.pid for w in running})
                 job = worker.job
                 outcome = collect(worker)
                 variant_result = variant_result_of(lesson, job.variant, outcome)
@@ -235,5 +239,6 @@ def grade(
         for worker in running:
             worker.kill("grading was interrupted")
             worker.reap()
+        kill_orphans()
         shutil.rmtree(workdir, ignore_errors=True)
     return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started)
