@@ -28,6 +28,7 @@ import subprocess
 import sys
 import sysconfig
 import tempfile
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,6 +44,7 @@ KEEP_CONSOLE_BYTES = 4000
 UNPRIVILEGED_UID = 65534
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
+_subreaper_since: int | None = None  # when this process became a subreaper (clock ticks since boot)
 
 
 @dataclass
@@ -140,11 +142,20 @@ def _compile_once() -> None:
 
 def become_subreaper() -> bool:
     """Make this process the one that inherits orphans of its descendants (Linux), so it can end them."""
+    global _subreaper_since
     try:
         libc = ctypes.CDLL(None, use_errno=True)
-        return libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+        done = libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
     except (OSError, AttributeError):
         return False
+    if done and _subreaper_since is None:
+        _subreaper_since = _boot_ticks_now()
+    return done
+
+
+def _boot_ticks_now() -> int:
+    """Now, in the clock ticks since boot that /proc/PID/stat gives a process's start time in."""
+    return int(time.clock_gettime(time.CLOCK_BOOTTIME) * os.sysconf("SC_CLK_TCK"))
 
 
 def _is_subreaper() -> bool:
@@ -159,8 +170,9 @@ def _is_subreaper() -> bool:
 def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
     """As a subreaper: kill and reap every child process no one started on purpose (a brick's orphans).
 
-    Children in `keep`, and bricks still running, are left alone."""
-    if not _is_subreaper():
+    Children in `keep`, bricks still running, and processes started before this process became a
+    subreaper (a test runner's own helpers) are left alone."""
+    if not _is_subreaper() or _subreaper_since is None:
         return 0
     me = os.getpid()
     mine = _running | set(keep)
@@ -178,7 +190,9 @@ def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
         except OSError:
             continue
         fields = stat[stat.rfind(")") + 2 :].split()
-        if len(fields) > 1 and int(fields[1]) == me and int(entry) not in mine:
+        if len(fields) < 20 or int(fields[1]) != me or int(entry) in mine:
+            continue
+        if int(fields[19]) >= _subreaper_since:  # started since: a brick's, orphaned
             try:
                 os.kill(int(entry), signal.SIGKILL)
                 os.waitpid(int(entry), 0)

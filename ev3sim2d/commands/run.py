@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
+from ..brick_process import become_subreaper
 from ..program import ProgramError
 from ..render.outputs import add_picture_arguments, write_pictures
 from ..run import RunResult, echo_line, run_programs
@@ -86,6 +86,7 @@ def main(args) -> int:
             if not Path(program).is_file():
                 return fail(f"{program}: no such program file")
         echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
+        become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
         result = run_programs(
             args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
         )
