@@ -26,7 +26,6 @@ import site
 import socket
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import time
 from dataclasses import dataclass, field
@@ -282,8 +281,3 @@ def console_tail(path: Path) -> str:
             return f.read().decode("utf-8", "replace").strip()
     except OSError:
         return ""
-
-
-def python_paths() -> dict:
-    """Where this interpreter keeps its standard library (for the record)."""
-    return {"stdlib": sysconfig.get_paths().get("stdlib", "")}

@@ -11,7 +11,6 @@ and no process of the run is left behind.
 from __future__ import annotations
 
 import gc
-import signal
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -287,4 +286,4 @@ def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
     return echo
 
 
-__all__ = ["run_programs", "RunResult", "ProgramError", "StartBlocked", "echo_line", "signal"]
+__all__ = ["run_programs", "RunResult", "ProgramError", "StartBlocked", "echo_line"]
