@@ -348,7 +348,19 @@ def _only_thread() -> None:
 
 
 def _real_paths(paths: list[str]) -> list[str]:
-    return _unique(os.path.realpath(p) for p in paths if os.path.exists(p))
+    """The existing paths, symbolic links resolved (each folder once: site-packages has many entries)."""
+    folders: dict[str, str] = {}
+    real = []
+    for path in paths:
+        folder, name = os.path.split(os.path.abspath(path))
+        if folder not in folders:
+            folders[folder] = os.path.realpath(folder)
+        resolved = os.path.join(folders[folder], name)
+        if os.path.islink(resolved):
+            resolved = os.path.realpath(resolved)
+        if os.path.exists(resolved):
+            real.append(resolved)
+    return _unique(real)
 
 
 def _own_session(report: dict) -> None:
@@ -456,18 +468,22 @@ def _user_namespace_refusal(err: OSError) -> str:
     return f"unprivileged user namespaces: {err.strerror}"
 
 
-def _reachable_for(uid: int, paths: list[str], open_folders: list[str]) -> None:
+def _reachable_for(uid: int, paths: list[str], open_folders) -> None:
     """Let `uid` reach every allowed path: a folder it may not pass through on the way (e.g.
     /root, 0700, holding a pyenv Python) is covered with a tmpfs holding only the allowed paths,
     bound back in; an allowed folder it may not list (a program's folder made by mkdtemp, 0700)
     in `open_folders` is covered likewise, its entries bound back.  Only in this brick's private
     mount namespace, shallow folders first; everything else in such folders stays hidden."""
     covered: dict[str, set[str]] = {}
+    passable: dict[str, bool] = {}
+    open_folders = set(open_folders)
     for path in paths:
         parts = path.split("/")[1:-1]
         for depth in range(1, len(parts) + 1):
             folder = "/" + "/".join(parts[:depth])
-            if not _allows(folder, uid, stat.S_IXOTH):
+            if folder not in passable:
+                passable[folder] = _allows(folder, uid, stat.S_IXOTH)
+            if not passable[folder]:
                 covered.setdefault(folder, set()).add(path)
                 break
         if (
