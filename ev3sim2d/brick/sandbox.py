@@ -275,6 +275,7 @@ def enter(policy: SandboxPolicy) -> dict:
     _only_thread()
     report: dict[str, str] = {}
     original_parent = os.getppid()
+    random_state = _random_state()
     as_root = 0 in os.getresuid()
     uid = policy.unprivileged_uid if as_root else os.getuid()
 
@@ -330,7 +331,21 @@ def enter(policy: SandboxPolicy) -> dict:
     report["fds"] = f"on (kept 0, 1, 2{''.join(f', {fd}' for fd in sorted(policy.keep_fds))})"
     if namespaced:
         _become_init(status_w)
+        _restore_random_state(random_state)
     return report
+
+
+def _random_state():
+    """The global generator's state: Python reseeds it after every fork (random.py registers
+    os.register_at_fork), which would undo a run's seed; enter's own forks must not show."""
+    module = sys.modules.get("random")
+    return (module, module.getstate()) if module is not None else None
+
+
+def _restore_random_state(saved) -> None:
+    if saved is not None:
+        module, state = saved
+        module.setstate(state)
 
 
 def _only_thread() -> None:

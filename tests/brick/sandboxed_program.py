@@ -4,7 +4,8 @@
 
 SETUP: repo (the folder holding ev3sim2d), site_packages (added to sys.path, as the boot does),
 scratch (the write path), read (extra read paths), limits (more SandboxPolicy fields), program
-(source text) and args (given to the program as ARGS).  Prints "REPORT <json>" once inside,
+(source text), args (given to the program as ARGS) and, if given, seed (random.seed before
+entering, as the brick's runtime does).  Prints "REPORT <json>" once inside,
 then whatever the program prints.  A program reports each try with attempt(name, action):
 one line "RESULT <json>" with ok, and the value or the error.
 """
@@ -36,6 +37,10 @@ def main() -> None:
         keep_fds=[],
         **setup["limits"],
     )
+    if "seed" in setup:  # as the brick's runtime seeds the run before it enters the sandbox
+        import random
+
+        random.seed(setup["seed"])
     report = sandbox.enter(policy)
     sys.path.remove(setup["repo"])
     print("REPORT " + json.dumps(report), flush=True)

@@ -134,6 +134,7 @@ def run_brick(scratch):
         python=sys.executable,
         user=None,
         scratch=scratch,
+        seed=None,
     ):
         setup = {
             "repo": str(REPO),
@@ -144,6 +145,8 @@ def run_brick(scratch):
             "program": textwrap.dedent(program),
             "args": {"scratch": str(scratch), "test_pid": os.getpid(), **(args or {})},
         }
+        if seed is not None:
+            setup["seed"] = seed
         environment = {
             "PATH": "/usr/local/bin:/usr/bin:/bin",
             "HOME": str(scratch),
@@ -247,6 +250,15 @@ def test_an_honest_program_runs_normally(run_brick):
     honest(brick, [*names, "socketpair", "devnull", "child interpreter"])
     assert brick.results["child interpreter"]["value"] == repr("42\n")
     assert brick.returncode == 0, brick.describe()
+
+
+def test_entering_leaves_the_runs_random_seed_alone(run_brick):
+    """Not a trick: the sandbox's own forks (Python reseeds `random` after a fork) must not undo
+    the seed the brick's runtime set, or a run would not be the same twice."""
+    import random
+
+    brick = run_brick("import random\nattempt('draw', random.random)", seed=1234)
+    assert brick.results["draw"]["value"] == repr(random.Random(1234).random())
 
 
 @pytest.mark.skipif(
