@@ -276,7 +276,7 @@ def enter(policy: SandboxPolicy) -> dict:
     report: dict[str, str] = {}
     original_parent = os.getppid()
     random_state = _random_state()
-    as_root = 0 in os.getresuid()
+    as_root = 0 in os.getresuid() and _root_can_become(policy.unprivileged_uid, report)
     uid = policy.unprivileged_uid if as_root else os.getuid()
 
     _own_session(report)
@@ -308,7 +308,7 @@ def enter(policy: SandboxPolicy) -> dict:
         alive_r, alive_w = os.pipe()
         init_pid = os.fork()
         if init_pid:
-            _outer_process(init_pid, status_r, alive_w, uid, original_parent)
+            _outer_process(init_pid, status_r, alive_w, uid if made_by_root else None, original_parent)
         os.close(status_r)
         os.close(alive_w)
         alive_fd = alive_r
@@ -318,6 +318,8 @@ def enter(policy: SandboxPolicy) -> dict:
         if made_by_root:
             _give_up_root(uid, report)
             user_ns_tasks = 2 if _user_namespace_after_root(report, uid) else 0
+    if as_root:
+        _check_reachable(read_paths, write_paths, report)
     _drop_capabilities(report)
     _die_with_parent(report, original_parent, alive_fd)
     _no_new_privs(report)
@@ -360,6 +362,24 @@ def _only_thread() -> None:
             f"enter() needs this process to have one thread, it has {threads}: Landlock and seccomp "
             "would bind only the calling thread; call it before starting any thread"
         )
+
+
+def _root_can_become(uid: int, report: dict) -> bool:
+    """Root can become `uid` unless it is root of a user namespace that does not map it (a
+    rootless container: its root is an unprivileged user of the host, and is treated as one)."""
+    for kind in ("uid", "gid"):
+        try:
+            with open(f"/proc/self/{kind}_map") as f:
+                ranges = [tuple(map(int, line.split())) for line in f if line.strip()]
+        except OSError:
+            continue
+        if not any(inside <= uid < inside + count for inside, _, count in ranges):
+            report["root_dropped"] = (
+                f"off: {kind} {uid} does not exist in this user namespace (a rootless container, "
+                "whose root is an unprivileged user of the host: the brick runs as that user)"
+            )
+            return False
+    return True
 
 
 def _real_paths(paths: list[str]) -> list[str]:
@@ -586,14 +606,17 @@ def _fresh_proc(report: dict) -> None:
 # ---------------------------------------------------------------- the three processes
 
 
-def _outer_process(init_pid: int, status_fd: int, alive_fd: int, uid: int, original_parent: int) -> None:
-    """The process the simulator started: it gives up everything, waits for the namespace's
-    init and ends as the program's process ended (exit code or signal).  It never returns."""
+def _outer_process(
+    init_pid: int, status_fd: int, alive_fd: int, root_for: int | None, original_parent: int
+) -> None:
+    """The process the simulator started: it gives up everything (root for `root_for` when it
+    is still root), waits for the namespace's init and ends as the program's process ended
+    (exit code or signal).  It never returns."""
     code = _EXIT_SANDBOX_BROKEN
     try:
         signal.signal(signal.SIGINT, signal.SIG_DFL)
-        if 0 in os.getresuid():
-            _give_up_root(uid, {})
+        if root_for is not None:
+            _give_up_root(root_for, {})
         _drop_capabilities({})
         _prctl(_PR_SET_NO_NEW_PRIVS, 1)
         _prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
@@ -613,6 +636,8 @@ def _outer_process(init_pid: int, status_fd: int, alive_fd: int, uid: int, origi
             os.kill(os.getpid(), sig)
         elif os.WIFEXITED(status):
             code = os.WEXITSTATUS(status)
+    except BaseException as err:
+        _say_why(err)
     finally:
         os._exit(code)
 
@@ -636,8 +661,18 @@ def _become_init(status_fd: int) -> None:
                 os.write(status_fd, struct.pack("i", status))
                 code = os.WEXITSTATUS(status) if os.WIFEXITED(status) else 128 + os.WTERMSIG(status)
                 break
+    except BaseException as err:
+        _say_why(err)
     finally:
         os._exit(code)
+
+
+def _say_why(err: BaseException) -> None:
+    """The outer process and the init have no caller to raise to: they say it on stderr."""
+    try:
+        os.write(2, f"ev3sim2d sandbox: {type(err).__name__}: {err}\n".encode(errors="replace"))
+    except OSError:
+        pass
 
 
 def _die_with_parent(report: dict, original_parent: int, alive_fd: int | None) -> None:
@@ -674,6 +709,16 @@ def _give_up_root(uid: int, report: dict) -> None:
     if os.getresuid() != (uid, uid, uid) or os.getresgid() != (uid, uid, uid) or os.getgroups():
         raise SandboxError(f"root was not fully given up: uids {os.getresuid()}, gids {os.getresgid()}")
     report["root_dropped"] = f"on (uid {uid})"
+
+
+def _check_reachable(read_paths: list[str], write_paths: list[str], report: dict) -> None:
+    """Say which allowed paths the unprivileged uid cannot use (a Python under /root without a
+    mount namespace, a program's file of mode 0600): the program will fail where it needs them."""
+    closed = [p for p in read_paths if not os.access(p, os.R_OK | (os.X_OK if os.path.isdir(p) else 0))]
+    closed += [p for p in write_paths if not os.access(p, os.R_OK | os.W_OK | os.X_OK)]
+    if closed:
+        more = f" and {len(closed) - 3} more" if len(closed) > 3 else ""
+        report["root_dropped"] += f"; closed to it: {', '.join(closed[:3])}{more}"
 
 
 def _drop_capabilities(report: dict) -> None:
