@@ -42,6 +42,7 @@ class BrickPort:
         self.queue: deque = deque()
         self.keys: list[tuple] = []  # key -> (device or None, attribute, error if unknown)
         self.subscribed: list[int] = []
+        self._live_readers: list = []  # the subscribed attributes' readers, in the same order
         self.marker: int | None = None  # a tick the brick passed that the world has not reached
         self.declared = 0  # the last tick marker applied: the brick's clock is past it
         self.time_us = 0  # the brick's clock as far as the simulator knows
@@ -169,8 +170,11 @@ class BrickPort:
 
     def values(self) -> list:
         """Every subscribed attribute's value now, in the order the brick first read them."""
-        read = self._read
-        return [read(key) for key in self.subscribed]
+        try:
+            return [reader() for reader in self._live_readers]
+        except OSError:  # one of them fails: each with its own error
+            read = self._read
+            return [read(key) for key in self.subscribed]
 
     def _subscribe(self, op: list) -> list:
         """A read that wants an answer: [how the value changes, the value now]; a value that changes with
@@ -185,6 +189,7 @@ class BrickPort:
             kind = "live"
             if key not in self.subscribed:
                 self.subscribed.append(key)
+                self._live_readers.append(device.readers[attribute])
         return [kind, self._read(key)]
 
     def _apply_write(self, key: int, value) -> list | None:

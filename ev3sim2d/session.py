@@ -133,8 +133,30 @@ class Session:
             self._step_to(max(end_us, self.world_us))
         self._echo(None)
 
+    def _run_one(self, port: BrickPort) -> None:
+        """_run for one brick (the common case), without the bookkeeping of several."""
+        limit = self.limit_us
+        while port.end is None and port.gone is None:
+            self._drain(port)
+            if port.end is not None or port.gone is not None:
+                return
+            target = port.marker
+            if target is None:
+                self._wait([port])
+                continue
+            if limit is not None and target >= limit:
+                self._step_to(limit)
+                port.time_us = limit
+                port.end = {"t_us": limit, "status": "time_limit", "error": None}
+                self.drop(port, "time limit")
+                return
+            self._step_to(target)
+            port.marker = None
+
     def _run(self) -> None:
         ports = self.ports
+        if len(ports) == 1:
+            return self._run_one(ports[0])
         limit = self.limit_us
         while True:
             live = [p for p in ports if not p.finished]

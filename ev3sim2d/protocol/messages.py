@@ -66,8 +66,8 @@ def encode(message: list) -> bytes:
 def decode(line: bytes) -> list:
     """One line back into a message; ProtocolError for anything that is not a JSON array led by a kind."""
     try:
-        message = _loads(line)
-    except (ValueError, RecursionError) as err:
+        message = _loads(line.decode("utf-8"))
+    except (ValueError, RecursionError) as err:  # UnicodeDecodeError is a ValueError
         raise ProtocolError(f"not a JSON message ({err})") from None
     if type(message) is not list or not message or type(message[0]) is not str:
         raise ProtocolError("a message must be a JSON array whose first item is its kind")
