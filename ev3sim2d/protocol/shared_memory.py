@@ -8,7 +8,9 @@ bytes in and moves the producer position; receiving copies what is there out.
 A waiting side spins on the positions for a short while, then says it sleeps
 and waits on the socket pair, which carries nothing but wake-up bytes (sent
 only to a sleeper) and tells when the other process is gone.  A wake-up that
-crosses the flag is caught by the sleeper's short select timeout.
+crosses the flag is caught by the sleeper's short select timeout.  Spinning pays
+only while a core is free: the simulator looks at the machine's load and says
+in shared memory whether the brick (which cannot see it) may spin.
 
 So a message costs two memory copies and no system call while both sides are
 busy, instead of a send and a receive.  Positions written by the other side are
@@ -66,6 +68,8 @@ class SharedChannel(Channel):
         # word indexes: producer position, consumer position, consumer asleep
         self._out = (out_ring, out_ring + 8, out_ring + 16)
         self._in = (in_ring, in_ring + 8, in_ring + 16)
+        self._spin_word = to_brick + 24  # 1 while the simulator finds a core free for spinning
+        self._simulator = simulator
         self._out_data = out_ring * 8 + HEADER_BYTES
         self._in_data = in_ring * 8 + HEADER_BYTES
         self._written = 0  # our producer position (ours: never read back from shared memory)
@@ -133,6 +137,14 @@ class SharedChannel(Channel):
         words[self._in[1]] = produced
         return True
 
+    def _may_spin(self) -> bool:
+        """The simulator looks at the machine's load (and tells the brick, which cannot see it)."""
+        if self._simulator:
+            idle = cores_idle()
+            self._words[self._spin_word] = 1 if idle else 0
+            return idle
+        return bool(self._words[self._spin_word])
+
     def data_waiting(self) -> bool:
         return self._words[self._in[0]] != self._read or bool(self._buffer)
 
@@ -177,7 +189,7 @@ class SharedChannel(Channel):
         message = self._take()
         if message is not None:
             return message
-        end = _perf_counter() + (self.spin_s if cores_idle() else 0.0)
+        end = _perf_counter() + (self.spin_s if self._may_spin() else 0.0)
         while True:
             if self._fill(socket.MSG_DONTWAIT):
                 message = self._take()
