@@ -365,8 +365,9 @@ def _only_thread() -> None:
 
 
 def _root_can_become(uid: int, report: dict) -> bool:
-    """Root can become `uid` unless it is root of a user namespace that does not map it (a
-    rootless container: its root is an unprivileged user of the host, and is treated as one)."""
+    """Root can become `uid` unless it is root of a user namespace that does not map it: a
+    rootless container, whose root is an ordinary user of the host and is treated as one.
+    Refuses when that root is the host's root (mapped to the parent namespace's uid 0)."""
     for kind in ("uid", "gid"):
         try:
             with open(f"/proc/self/{kind}_map") as f:
@@ -374,6 +375,12 @@ def _root_can_become(uid: int, report: dict) -> bool:
         except OSError:
             continue
         if not any(inside <= uid < inside + count for inside, _, count in ranges):
+            if kind == "uid" and any(inside == outside == 0 for inside, outside, _ in ranges):
+                raise SandboxError(
+                    f"root here is the machine's root seen through a user namespace without uid {uid}: "
+                    "the program would run as the machine's root (owner of its files, exempt from the "
+                    f"process limit); map uid {uid} into the namespace, or run as an ordinary user"
+                )
             report["root_dropped"] = (
                 f"off: {kind} {uid} does not exist in this user namespace (a rootless container, "
                 "whose root is an unprivileged user of the host: the brick runs as that user)"

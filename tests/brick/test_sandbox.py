@@ -32,7 +32,18 @@ from ev3sim2d.brick import sandbox
 REPO = Path(__file__).resolve().parents[2]
 HELPER = Path(__file__).with_name("sandboxed_program.py")
 SITE_PACKAGES = [p for p in sys.path if p.rstrip("/").endswith("-packages") and os.path.isdir(p)]
-AS_ROOT = os.geteuid() == 0
+
+
+def _uid_mapped(uid: int) -> bool:
+    with open("/proc/self/uid_map") as f:
+        return any(
+            int(a) <= uid < int(a) + int(n) for a, _, n in (line.split() for line in f if line.strip())
+        )
+
+
+AS_ROOT = os.geteuid() == 0 and _uid_mapped(
+    65534
+)  # root that can give itself up (not a rootless container's)
 BRICK_UID = 65534 if AS_ROOT else os.getuid()
 IN_CI = os.environ.get("CI") == "true"
 LAYERS = (
@@ -135,6 +146,7 @@ def run_brick(scratch):
         user=None,
         scratch=scratch,
         seed=None,
+        wrapper=(),
     ):
         setup = {
             "repo": str(REPO),
@@ -156,7 +168,7 @@ def run_brick(scratch):
         }
         started = time.monotonic()
         done = subprocess.run(
-            [python, "-I", "-S", "-B", str(HELPER), json.dumps(setup)],
+            [*wrapper, python, "-I", "-S", "-B", str(HELPER), json.dumps(setup)],
             stdin=subprocess.DEVNULL,
             capture_output=True,
             text=True,
@@ -613,6 +625,9 @@ def test_no_capabilities_left_even_when_started_as_root(run_brick):
     assert held["sets"] == (0,) * 6 and held["ambient"] == [], held
     if brick.report.get("root_dropped", "").startswith("on") or brick.report.get("user_ns") == "on":
         assert held["bounding"] == [], held
+    if os.geteuid() == 0 and not AS_ROOT:  # a rootless container's root stays uid 0, without capabilities
+        stopped(brick, ["setgroups"], ("capabilities",))
+        return
     assert 0 not in held["uids"], held
     if AS_ROOT:
         require(brick, "root_dropped")
@@ -742,11 +757,12 @@ def test_every_layer_is_reported_and_on(run_brick):
     assert brick.returncode == 0
     layers = [layer for layer in LAYERS if layer != "root_dropped"]
     require(brick, *layers)
-    assert (
-        brick.report["root_dropped"].startswith("on")
-        if AS_ROOT
-        else brick.report["root_dropped"] == "not root"
-    )
+    if AS_ROOT:
+        assert brick.report["root_dropped"].startswith("on"), brick.report
+    elif os.geteuid() == 0:  # root of a rootless container
+        assert brick.report["root_dropped"].startswith("off: uid 65534 does not exist"), brick.report
+    else:
+        assert brick.report["root_dropped"] == "not root", brick.report
 
 
 def test_probe_says_what_the_kernel_offers():
@@ -843,3 +859,50 @@ def test_a_user_with_many_processes_still_gets_its_own_process_limit(run_brick, 
     assert brick.report["root_dropped"] == "not root"
     honest(brick, ["threads"])
     stopped(brick, ["read outside", "signal the crowd"], ("landlock", "pid_ns"))
+
+
+@pytest.mark.skipif(shutil.which("unshare") is None, reason="needs unshare(1)")
+def test_root_of_a_rootless_container_is_treated_as_the_user_it_is(run_brick, outside):
+    """Not a trick: in a rootless container, root is an ordinary user of the host that cannot
+    become uid 65534; the brick must still put up every other wall, and say root stayed."""
+    if os.geteuid() == 0:  # be an ordinary user of the host first, as a rootless container's root is
+        if not os.access("/usr/bin/python3", os.X_OK):
+            pytest.skip("needs /usr/bin/python3 to run as an ordinary user")
+        scratch = outside / "rootless-scratch"
+        scratch.mkdir()
+        shutil.chown(scratch, 54321, 54321)
+        become = ("setpriv", "--reuid=54321", "--regid=54321", "--clear-groups")
+        python = "/usr/bin/python3"
+    else:
+        scratch, become, python = None, (), sys.executable
+    wrapper = (*become, "unshare", "--user", "--map-root-user")
+    trial = subprocess.run([*wrapper, "true"], capture_output=True)
+    if trial.returncode != 0:
+        if IN_CI:
+            pytest.fail(f"CI machines must allow user namespaces: {trial.stderr!r}")
+        pytest.skip(f"no user namespace here: {trial.stderr.decode().strip()}")
+    brick = run_brick(
+        """
+        import os
+        attempt("read outside", lambda: open(ARGS["hidden"]).read())
+        attempt("uid", lambda: os.getresuid())
+        attempt("json", lambda: __import__("json").dumps([1]))
+        """,
+        args={"hidden": str(outside / "hidden.yaml")},
+        wrapper=wrapper,
+        python=python,
+        **({"scratch": scratch} if scratch else {}),
+    )
+    assert brick.report["root_dropped"].startswith("off: uid 65534 does not exist"), brick.report
+    require(brick, "user_ns", "pid_ns", "net_ns", "capabilities", "landlock", "seccomp")
+    honest(brick, ["uid", "json"])
+    stopped(brick, ["read outside"], ("landlock",))
+
+
+@pytest.mark.skipif(not AS_ROOT or shutil.which("unshare") is None, reason="needs root and unshare(1)")
+def test_the_machines_root_behind_a_user_namespace_is_refused(run_brick):
+    """Not a trick of the student's, but a setup to refuse: root seen through a user namespace
+    that cannot become uid 65534 is still the machine's root (owner of its files, exempt from the
+    process limit); the brick must not run the program at all."""
+    with pytest.raises(AssertionError, match="root here is the machine's root"):
+        run_brick("attempt('ran', lambda: 1)", wrapper=("unshare", "--user", "--map-root-user"))
