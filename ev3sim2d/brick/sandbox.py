@@ -207,8 +207,8 @@ class SandboxPolicy:
 
 
 def default_read_paths() -> list[str]:
-    """What any Python program needs to read: this Python's standard library and executable,
-    the site-packages entries except ev3sim2d itself (its lessons and grader stay closed), the
+    """What any Python program needs to read: this Python's standard library and executable (and
+    the `python3` on PATH, whose library is under /usr/lib), the site-packages entries except ev3sim2d itself (its lessons and grader stay closed), the
     system's shared libraries and locales, the time zones, and the two files of /etc it reads."""
     import site
     import sysconfig
@@ -219,6 +219,11 @@ def default_read_paths() -> list[str]:
     bases = tuple(os.path.join(p, "") for p in {sys.base_prefix, sys.base_exec_prefix})
     paths += [p for p in sys.path if p and p.startswith(bases) and not _is_site_packages(p)]
     paths += [sys.executable, os.path.realpath(sys.executable)]
+    for folder in os.environ.get("PATH", "").split(os.pathsep):  # the `python3` a program may start
+        candidate = os.path.join(folder, "python3")
+        if folder and os.access(candidate, os.X_OK):
+            paths += [candidate, os.path.realpath(candidate)]
+            break
     if sysconfig.get_config_var("Py_ENABLE_SHARED"):
         libdir, soname = sysconfig.get_config_var("LIBDIR"), sysconfig.get_config_var("INSTSONAME")
         if libdir and soname:

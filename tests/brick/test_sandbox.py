@@ -310,11 +310,15 @@ def test_a_child_interpreter_inherits_the_sandbox(run_brick, outside):
         attempt("child reads the hidden file", lambda: child(f"print(open({ARGS['hidden']!r}).read())"))
         attempt("child opens a socket", lambda: child("import socket; socket.socket()"))
         attempt("child says hello", lambda: child("print('hello')"))
+        attempt("system python3", lambda: subprocess.run(["python3", "-c", "print(1)"], capture_output=True, check=True))
+        attempt("system python3 reads the hidden file", lambda: subprocess.run(["python3", "-c", f"open({ARGS['hidden']!r}).read()"], capture_output=True, check=True))
         """,
         args={"hidden": str(outside / "hidden.yaml")},
     )
     honest(brick, ["child says hello"])
-    stopped(brick, ["child reads the hidden file"], ("landlock",))
+    stopped(brick, ["child reads the hidden file", "system python3 reads the hidden file"], ("landlock",))
+    if shutil.which("python3", path="/usr/local/bin:/usr/bin:/bin"):
+        honest(brick, ["system python3"])
     stopped(brick, ["child opens a socket"], ("seccomp",))
 
 
