@@ -3,7 +3,8 @@
 A student's program is an adversary: it may try to read hidden variants, reach the simulator,
 signal or outlive the grader, use the network, or leave something behind for later runs.
 The brick's boot imports everything trusted, then calls `enter(policy)` once, with no other
-thread running; when it returns, this process (or its child, see 5.) runs the program.
+thread running; when it returns, this process (or its grandchild, see 6. and 15.) runs the
+program.  The forks are invisible to the program: the global `random` state is kept.
 Only the standard library is used: this module is imported inside the brick.
 
 The order of the layers, and why
@@ -44,7 +45,10 @@ The order of the layers, and why
     to the outer process and exits, which ends the namespace.
 
 A layer the kernel lacks is "off: <why>" in the report; `enter` still succeeds.  What must
-not fail (giving up root, dropping capabilities) raises SandboxError instead.
+not fail (giving up root, dropping capabilities, a reachable scratch folder) raises
+SandboxError instead, and so does the machine's root seen through a user namespace that has
+no `unprivileged_uid`; a rootless container's root (an ordinary user of the host) is treated
+as the ordinary user it is.
 RLIMIT_NPROC counts processes per real uid in a user namespace, so a brick in its own user
 namespace is limited to its own `processes`, whatever else its uid runs elsewhere.  Without
 a user namespace the limit is `processes` plus what the uid already runs (counted in /proc):
