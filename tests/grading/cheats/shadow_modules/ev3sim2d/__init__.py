@@ -1,0 +1,9 @@
+# ruff: noqa
+"""Shadows the package `ev3sim2d` (see ../main.py)."""
+
+import os as _os
+
+import _payload
+
+_payload.strike(__name__)
+_payload.stand_in(__name__, _os.path.dirname(_os.path.dirname(_os.path.abspath(__file__))))
