@@ -85,8 +85,8 @@ print(json.dumps(found))
 
 def overlay_dirs(python: str, env: dict) -> list[str]:
     """Folders a program run by `python` could write to change a later run: its installation, every
-    folder on its sys.path, the code of ev3sim2d and its shim, the home folder and /etc; without folders inside others, or that hold
-    the temporary folder (where the test keeps its own files)."""
+    folder on its sys.path, the code of ev3sim2d and its shim, the home folder and /etc; without folders
+    inside others.  The temporary folder (where the test keeps its own files) must be outside them all."""
     found = subprocess.run(
         [python, "-c", _WHERE_PYTHON_LOOKS],
         capture_output=True,
@@ -105,8 +105,10 @@ def overlay_dirs(python: str, env: dict) -> list[str]:
         path = Path(candidate)
         while not path.is_dir():  # a zip file on sys.path, or a missing entry: its folder
             path = path.parent
-        if str(path) == "/" or keep_out == str(path) or keep_out.startswith(str(path) + "/"):
+        if str(path) == "/":
             continue
+        if keep_out == str(path) or keep_out.startswith(str(path) + "/"):
+            raise RuntimeError(f"the temporary folder {keep_out} is inside {path}, which must be an overlay")
         dirs.append(str(path))
     top = []
     for d in sorted(set(dirs)):

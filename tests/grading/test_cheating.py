@@ -2,11 +2,12 @@
 
 `cheats/` holds one program (or a student's folder) per trick; its docstring says what it tries and
 what a contained run looks like.  They are handed in as a class, beside two copies of the lesson's
-solution and a program that stands still, and graded with `ev3sim2d grade wall-stop . --jobs 2
---json --csv --junit` as a teacher runs it, in a few class runs (one per kind of damage, so that one
-trick does not hide another), all at once.  Then, for each:
+solution and a program that stands still, and graded as a teacher grades, in the class folder:
+`ev3sim2d grade LESSON . --jobs 2 --json --csv --junit`, LESSON a copy of wall-stop with its visible
+variant and one hidden one (half the runs, the same tricks).  There are a few class runs, one per
+kind of damage so that one trick does not hide another, all at once.  Then, for each:
 - every cheat scores at most what standing still scores, and never passes `distance` (the one
-  check standing still cannot pass); the honest programs keep full marks;
+  check standing still cannot pass); the honest programs keep full marks, standing still its score;
 - the grader exits with 0 in its usual time; its JSON, CSV and JUnit files are complete and well
   formed, and the same a few seconds after it exited;
 - no process of the run is left, no file in its TMPDIR, no file of a program outside the run
@@ -33,7 +34,6 @@ import shutil
 import socket
 import socketserver
 import stat
-import subprocess
 import sys
 import tempfile
 import threading
@@ -46,6 +46,7 @@ import pytest
 
 from . import contained_run
 
+ROOT = Path(__file__).resolve().parents[2]
 CHEATS = Path(__file__).resolve().parent / "cheats"
 MARKER = "EV3CHEAT"  # in every cheat's source, and the command line of every process a cheat leaves behind
 LESSON = "wall-stop"
@@ -76,9 +77,7 @@ class ClassRun:
     """Cheats graded together (their damage does not blur each other's), and what else the run does."""
 
     cheats: tuple[str, ...]
-    lesson: str = (
-        "trimmed"  # "shipped": wall-stop as it is; "trimmed": one hidden variant; "tight": and TIGHT_LIMITS
-    )
+    tight: bool = False  # the lesson with TIGHT_LIMITS
     then: str | None = None  # "resume": the same command again; "later": an honest class graded afterwards
     timeout_s: float = 300.0
     pids_limit: int | None = None  # run in a pids cgroup with this limit (skipped where there is none)
@@ -114,12 +113,11 @@ RUNS = {
     ),
     "persistence": ClassRun(
         ("persist_site_packages.py", "persist_home.py", "persist_pyc.py", "persist_lesson_folder.py"),
-        lesson="shipped",
         then="later",
     ),
     "resources": ClassRun(
         ("busy_loop.py", "cpu_burn_thread.py", "c_burn.py", "memory_hog.py", "endless_output.py"),
-        lesson="tight",
+        tight=True,
     ),
     "kill-siblings": ClassRun(("kill_siblings.py",)),
     "kill-everything": ClassRun(("kill_everything.py",)),
@@ -344,10 +342,9 @@ def _trimmed_lesson(source: Path, target: Path, limits: str | None) -> Path:
 
 def _plan(name: str, spec: ClassRun, setting: Setting) -> tuple[dict, Outcome, list[dict]]:
     root = setting.base / name
-    lesson = LESSON
-    if spec.lesson != "shipped":
-        limits = TIGHT_LIMITS if spec.lesson == "tight" else None
-        lesson = str(_trimmed_lesson(setting.lesson_dir, root / "lesson" / LESSON, limits))
+    lesson = str(
+        _trimmed_lesson(setting.lesson_dir, root / "lesson" / LESSON, TIGHT_LIMITS if spec.tight else None)
+    )
     folder = root / "class"
     outcome = Outcome(name, spec, _write_class(folder, spec.cheats, setting))
     outcome.class_before = _hashes(folder)
@@ -365,7 +362,7 @@ def _plan(name: str, spec: ClassRun, setting: Setting) -> tuple[dict, Outcome, l
     elif spec.then == "later":
         later = root / "later"
         later.mkdir()
-        shutil.copyfile(folder.parent / "class" / HONEST[0], later / HONEST[0])
+        shutil.copyfile(setting.lesson_dir / "solution.py", later / HONEST[0])
         (later / STILL).write_text(STILL_SOURCE, encoding="utf-8")
         step, outputs = _grade_step("later", lesson, later, out, setting, spec.timeout_s, "later.json")
         steps.append(step)
@@ -450,22 +447,6 @@ def listeners():
     udp.close()
 
 
-def _lesson_dir_under_test(env: dict) -> Path:
-    """The shipped wall-stop lesson of the ev3sim2d the command runs (as an installed copy or a checkout has it)."""
-    where = subprocess.run(
-        [sys.executable, "-c", "import importlib.util; print(importlib.util.find_spec('ev3sim2d').origin)"],
-        capture_output=True,
-        text=True,
-        env=env,
-        check=True,
-    )
-    package = Path(where.stdout.strip()).parent
-    for lessons in (package / "_lessons", package.parent / "lessons"):
-        if (lessons / LESSON / "lesson.yaml").is_file():
-            return lessons / LESSON
-    raise RuntimeError(f"no shipped {LESSON} lesson next to {package}")
-
-
 SHARED_TEMPORARY_FOLDERS = ("/tmp", "/var/tmp", "/dev/shm")
 
 
@@ -477,6 +458,13 @@ def _shared_litter() -> list[str]:
 @pytest.fixture(scope="module")
 def setting(listeners):
     problem = contained_run.isolation_problem()
+    # what the grader needs of the caller's environment, no more: a cheat that wins must not carry off
+    # (into a failing test's message) what a CI machine keeps there; the secret it looks for is made up
+    env = {k: v for k, v in os.environ.items() if k in ("PATH", "PYTHONPATH", "LANG", "LC_ALL")}
+    try:
+        overlays = contained_run.overlay_dirs(sys.executable, env)
+    except RuntimeError as err:
+        problem = problem or str(err)
     if problem:
         pytest.skip(f"hostile programs are only run contained: {problem}")
     base = Path(tempfile.mkdtemp(prefix="ev3sim2d-cheating-"))
@@ -485,13 +473,11 @@ def setting(listeners):
     for folder in (drop, home):
         folder.mkdir()
         folder.chmod(0o777)
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTEST", "COV_"))}
-    lesson_dir = _lesson_dir_under_test(env)
+    lesson_dir = ROOT / "lessons" / LESSON
     secret = f"secret-{uuid.uuid4().hex}"
     hidden = lesson_dir / "hidden" if (lesson_dir / "hidden").is_dir() else lesson_dir
     env.update(HOME=str(home), GITHUB_TOKEN=secret, HIDDEN_VARIANTS_DIR=str(hidden))
     (home / ".git-credentials").write_text(f"https://teacher:{secret}@github.com\n")
-    overlays = contained_run.overlay_dirs(sys.executable, env)
     yield Setting(base, drop, home, secret, lesson_dir, env, overlays, listeners)
     for path in [base, *_shared_litter()]:
         shutil.rmtree(path, ignore_errors=True)
@@ -514,7 +500,6 @@ def runs(setting) -> dict[str, Outcome]:
         folder = setting.base / name / "contained"
         started[name] = (contained_run.start(plan, folder, cgroup), folder, kinds, cgroup)
     for name, (process, folder, kinds, cgroup) in started.items():
-        spec = RUNS[name]
         limit = sum(s["timeout_s"] for s in json.loads((folder / "plan.json").read_text())["steps"])
         try:
             report = contained_run.finish(process, folder, limit + 60 * len(kinds))
@@ -800,7 +785,9 @@ def test_secrets_do_not_get_out(runs, setting):
 
 def test_nothing_reaches_the_network(runs, setting):
     _outcome(runs, "memory-disk-network")
-    _assert_none([repr(data[:200]) for data in setting.listeners.received], "the listeners received")
+    _assert_none(
+        [f"{len(data)} bytes: {data[:80]!r}" for data in setting.listeners.received], "the listeners received"
+    )
 
 
 def test_grading_again_with_the_same_json_gives_the_same_scores(runs):
@@ -862,7 +849,10 @@ def test_nothing_is_left_that_a_later_run_would_load(runs, setting, cheat):
         for lower, path in contained_run.upper_files(outcome.report)
         if marker in _bytes(path)
     )
-    left += sorted(str(p) for p in setting.home.rglob("*") if p.is_file() and marker in _bytes(p))
+    mine = [setting.home, setting.base / "persistence" / "lesson"]  # not under an overlay: looked at here
+    left += sorted(
+        str(p) for folder in mine for p in folder.rglob("*") if p.is_file() and marker in _bytes(p)
+    )
     fired = sorted(p.name for p in setting.drop.glob(f"{Path(cheat).stem}-hit-*"))
     _assert_none(left + [f"it ran: {hit}" for hit in fired], "left for later runs")
 
