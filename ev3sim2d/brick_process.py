@@ -213,6 +213,8 @@ def brick_environment(scratch: Path) -> dict[str, str]:
         "PYTHONHASHSEED": "0",
         "PYTHONIOENCODING": "utf-8",
         "PYTHONDONTWRITEBYTECODE": "1",
+        "OPENBLAS_NUM_THREADS": "1",  # numpy's BLAS: one thread, in the brick's share of the machine
+        "OMP_NUM_THREADS": "1",
     }
 
 

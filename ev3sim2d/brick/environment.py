@@ -159,6 +159,7 @@ def _deterministic_randomness(seed: int) -> None:
     """random, os.urandom and numpy.random, all drawn from the run's seed."""
     source = random.Random(f"ev3sim2d-urandom-{seed}")
     os.urandom = lambda size: source.randbytes(size)
+    random._urandom = os.urandom  # what SystemRandom (so `secrets`, and numpy's fresh seeds) draws from
     seeds = random.Random(f"ev3sim2d-seeds-{seed}")
     real_seed = random.Random.seed
 

@@ -213,6 +213,8 @@ class SharedChannel(Channel):
 
     def close(self) -> None:
         super().close()
+        if not self._simulator:
+            return  # in a brick the sandbox closed the mapping's own descriptor: leave the mapping be
         try:
             self._words.release()
             self.memory.close()
