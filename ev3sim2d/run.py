@@ -76,6 +76,7 @@ def run_programs(
     limits: BrickLimits | None = None,
     sandbox: bool = True,
     scratch_in: Path | None = None,
+    program_seed: int | None = None,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -84,6 +85,9 @@ def run_programs(
     limits: CPU time, memory, file sizes and processes of each brick.
     sandbox: False only for measuring what the sandbox costs; a program is never graded without one.
     scratch_in: where each brick's scratch folder is made (default: the system's temporary folder).
+    program_seed: the seed of the programs' `random` (default: seed, which also seeds sensor noise).
+    Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
+    simulator's): a program learns of the world only by its sensors.
     """
     loaded = [Program(p) for p in programs]  # ProgramError: the caller reports it
     if len(loaded) > len(world.starts):
@@ -113,8 +117,7 @@ def run_programs(
                 "protocol": PROTOCOL,
                 "robot": names[i],
                 "tick_us": sim.tick_us,
-                "limit_us": limit_us,
-                "seed": seed,
+                "seed": seed if program_seed is None else program_seed,
                 "program": str(path),
                 "program_dirs": [str(path.parent)],
                 "shim_root": str(shim_root()),

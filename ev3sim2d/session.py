@@ -22,7 +22,7 @@ from .simulation import Simulation
 
 _monotonic = time.monotonic
 _perf_counter = time.perf_counter
-SPIN_S = 0.0002
+SPIN_S = 0.002
 BAD_MESSAGE = (ProtocolError, TypeError, ValueError, IndexError, KeyError, AttributeError, OverflowError)
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 from ..grading.grader import default_jobs, grade
 from ..grading.lesson import list_shipped_lessons, load_lesson
 from ..grading.report import details, score_text, table, write_csv, write_json, write_junit
+from ..grading.safe_text import one_line
 from ..grading.submission import DEFAULT_ENTRY, find_submissions
 from ..grading.worker import CheckError
 from ..world.source_error import WorldFileError
@@ -109,7 +110,7 @@ def main(args) -> int:
         finished["n"] += 1
         if not args.quiet:
             print(
-                f"[{finished['n']:>{len(str(total))}}/{total}] {result.submission}: {score_text(result)} ({result.status})",
+                f"[{finished['n']:>{len(str(total))}}/{total}] {one_line(result.submission)}: {score_text(result)} ({result.status})",
                 file=sys.stderr,
             )
 

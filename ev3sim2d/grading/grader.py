@@ -16,6 +16,7 @@ from __future__ import annotations
 import gc
 import json
 import os
+import secrets
 import shutil
 import tempfile
 import time
@@ -185,11 +186,13 @@ def grade(
                     variant=v,
                     entry=str(submission.entry.resolve()),
                     readable=str(submission.path.resolve()),
-                    folder=str(workdir / f"s{index}-v{v}"),
+                    # a name that says nothing: the brick's scratch folder is inside, in its sight
+                    folder=str(workdir / secrets.token_hex(8)),
                     lesson=lesson_folder,
                     variant_name=variant.name,
                     time_s=variant.time_s,
                     seed=variant.seed,
+                    program_seed=lesson.variants[0].seed,
                     hang_s=lesson.limits.hang_s,
                     wall_s=lesson.limits.wall_for(variant.time_s),
                     cpu_s=lesson.limits.cpu_for(variant.time_s),

@@ -15,6 +15,7 @@ from pathlib import Path
 from .grader import Grading, write_results
 from .lesson import Lesson
 from .result import SubmissionResult, VariantResult
+from .safe_text import one_line, printable, spreadsheet_cell
 
 FAILURE_WIDTH = 70
 
@@ -39,7 +40,9 @@ def table(grading: Grading) -> str:
         failure = result.first_failure()
         if len(failure) > FAILURE_WIDTH:
             failure = failure[: FAILURE_WIDTH - 3] + "..."
-        rows.append([result.submission, score_text(result), result.status, *cells, failure])
+        rows.append(
+            [one_line(result.submission), score_text(result), result.status, *cells, one_line(failure)]
+        )
     widths = [max(len(str(row[i])) for row in [header, *rows]) for i in range(len(header))]
     hidden = len(lesson.hidden_variants())
     lines = [
@@ -86,7 +89,7 @@ def details(result: SubmissionResult) -> str:
         lines.append(f"  {result.problem}")
     for variant in result.variants:
         lines += variant_details(variant)
-    return "\n".join(lines)
+    return printable("\n".join(lines))
 
 
 def write_json(path: str | Path, grading: Grading) -> None:
@@ -148,6 +151,11 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
     suites.set("failures", str(total_failures))
     suites.set("errors", str(total_errors))
     suites.set("skipped", str(total_skipped))
+    for element in suites.iter():  # a program's words, made fit for XML
+        if element.text:
+            element.text = printable(element.text)
+        for name, value in element.attrib.items():
+            element.set(name, printable(value))
     ET.indent(suites)
     return ET.ElementTree(suites)
 
@@ -184,7 +192,7 @@ def write_csv(path: str | Path, grading: Grading) -> None:
                 percent = 100.0 * result.score / result.max_score if result.max_score else 0.0
                 out.writerow(
                     [
-                        result.submission,
+                        spreadsheet_cell(result.submission),
                         result.status,
                         _points(result.score),
                         _points(result.max_score),
@@ -193,7 +201,7 @@ def write_csv(path: str | Path, grading: Grading) -> None:
                             _points(by_name[v.report_name].score) if v.report_name in by_name else ""
                             for v in lesson.variants
                         ],
-                        result.first_failure(),
+                        spreadsheet_cell(result.first_failure()),
                     ]
                 )
 

@@ -73,6 +73,7 @@ class Job:
     output_mb: float
     keep_trace: bool = False  # write trace.npz when a check fails
     readable: str = ""  # the submission (file or folder): all the brick may read besides Python
+    program_seed: int = 0  # the program's `random`: the same in every variant, so it cannot tell them apart
 
 
 @dataclass
@@ -196,6 +197,7 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
             readable,
             limits,
             scratch_in=folder,
+            program_seed=job.program_seed,
         )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})

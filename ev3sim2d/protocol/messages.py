@@ -7,7 +7,7 @@ ahead on its own clock; it tells the simulator what it did, in order, and asks
 only when it needs an answer.  docs/protocol.md describes it in full.
 
 Simulator -> brick
-    ["welcome", {config}]             first: protocol, robot, tick_us, limit_us, seed, program, sandbox
+    ["welcome", {config}]             first: protocol, robot, tick_us, seed, program, sandbox
     ["snap", label_us, [values]]      the live attributes' values for the brick's reads while its clock
                                       is in [label_us, label_us + tick_us): taken after the world's tick
                                       at label_us - tick_us

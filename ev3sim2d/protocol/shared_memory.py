@@ -55,7 +55,7 @@ def create_memory() -> int:
 class SharedChannel(Channel):
     """One end of a brick connection through shared memory; `simulator` says which end."""
 
-    def __init__(self, sock: socket.socket, memory_fd: int, simulator: bool, spin_s: float = 0.0002) -> None:
+    def __init__(self, sock: socket.socket, memory_fd: int, simulator: bool, spin_s: float = 0.002) -> None:
         super().__init__(sock, spin_s)
         self.memory = mmap.mmap(memory_fd, SIZE)
         os.close(memory_fd)
