@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import hashlib
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -52,11 +53,37 @@ def _python_files(folder: Path) -> list[Path]:
     )
 
 
+def _links(path: Path) -> list[Path]:
+    """Symbolic links in a submission: the grader reads the files as the teacher, so a link could show
+    a student any file the teacher may read (in a syntax error's message, say).  None are taken."""
+    if path.is_symlink():
+        return [path]
+    if not path.is_dir():
+        return []
+    found = []
+    for folder, dirs, files in os.walk(path):
+        found += [Path(folder) / n for n in dirs + files if os.path.islink(os.path.join(folder, n))]
+    return sorted(found)
+
+
+def _refused(path: Path, name: str) -> Submission | None:
+    links = _links(path)
+    if not links:
+        return None
+    shown = ", ".join(str(p) for p in links[:3]) + (" ..." if len(links) > 3 else "")
+    return Submission(
+        name, path, None, (), f"{shown}: a symbolic link; hand in the file itself, not a link to it"
+    )
+
+
 def _file(path: Path, name: str) -> Submission:
-    return Submission(name, path, path, (path,))
+    return _refused(path, name) or Submission(name, path, path, (path,))
 
 
 def _folder(path: Path, name: str, entry_name: str) -> Submission:
+    refused = _refused(path, name)
+    if refused is not None:
+        return refused
     files = tuple(_python_files(path))
     entry = path / entry_name
     if entry.is_file():
