@@ -540,6 +540,11 @@ def _lesson_shape(results: dict) -> tuple[list[str], list[str]]:
     return [v["name"] for v in results["variants"]], [c["name"] for c in honest["variants"][0]["checks"]]
 
 
+def _refused(submission: dict) -> bool:
+    """A submission the grader would not run (a symbolic link in it, no program): no variants, 0 points."""
+    return bool(submission.get("problem")) and not submission["variants"]
+
+
 def _score_problems(step: Step, name: str) -> list[str]:
     """Why the submission's result is not what a contained run of it gives (nothing: it is)."""
     results = step.results()
@@ -550,6 +555,8 @@ def _score_problems(step: Step, name: str) -> list[str]:
         return [f"no result in the JSON (the grader exited with {step.rc}, timed out: {step.timed_out})"]
     variants, checks = _lesson_shape(results)
     problems = []
+    if _refused(mine):
+        return [] if mine["score"] == 0 else [f"refused, yet {mine['score']} points"]
     if [v["name"] for v in mine["variants"]] != variants:
         problems.append(f"its variants are not the lesson's: {[v['name'] for v in mine['variants']]}")
     for variant in mine["variants"]:
@@ -598,6 +605,8 @@ def _report_problems(step: Step, submissions: list[str]) -> list[str]:
         problems.append(f"the JSON has results for {len(names)} of {len(submissions)} submissions")
     variants, checks = _lesson_shape(results) if HONEST[0] in names else ([], [])
     for sub in results.get("submissions", []):
+        if _refused(sub):
+            continue
         if len(sub["variants"]) != len(variants) or any(
             len(v["checks"]) != len(checks) for v in sub["variants"]
         ):
@@ -611,7 +620,9 @@ def _report_problems(step: Step, submissions: list[str]) -> list[str]:
         problems.append("the CSV is missing")
     else:
         header, body = rows[0], rows[1:]
-        if sorted(r[0] for r in body) != sorted(submissions) or any(len(r) != len(header) for r in body):
+        # a name that starts like a formula is written with a quote before it
+        shown = sorted(r[0][1:] if r[0][:2] in ("'=", "'+", "'-", "'@") else r[0] for r in body)
+        if shown != sorted(submissions) or any(len(r) != len(header) for r in body):
             problems.append(f"the CSV does not have one whole row per submission ({len(body)} rows)")
         by_name = {s["submission"]: s for s in results.get("submissions", [])}
         for row in body:
