@@ -41,6 +41,7 @@ PR_SET_CHILD_SUBREAPER = 36
 CONSOLE_FILE = "console.log"
 KEEP_CONSOLE_BYTES = 4000
 UNPRIVILEGED_UID = 65534
+SPIN_S = 0.002  # how long a side spins before it sleeps: waking a sleeper costs about 100 us here
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
 _subreaper_since: int | None = None  # when this process became a subreaper (clock ticks since boot)
@@ -219,13 +220,14 @@ def brick_environment(scratch: Path) -> dict[str, str]:
 
 
 def start_brick(
-    readable: list[Path], shared_memory: bool = True, scratch_in: Path | None = None
+    readable: list[Path], shared_memory: bool = True, scratch_in: Path | None = None, spin: bool = True
 ) -> tuple[BrickProcess, list[str]]:
     """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's).
 
     scratch_in: the folder to make the brick's scratch folder in (default: the system's temporary
     folder); a grading worker uses its job folder, which the grader removes even if the worker is
-    killed."""
+    killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
+    share the machine's cores: see protocol/shared_memory.py)."""
     _compile_once()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
     if os.geteuid() == 0:
@@ -251,10 +253,10 @@ def start_brick(
     theirs.close()
     _running.add(popen.pid)
     if memory_fd >= 0:
-        channel = SharedChannel(ours, os.dup(memory_fd), simulator=True)
+        channel = SharedChannel(ours, os.dup(memory_fd), simulator=True, spin_s=SPIN_S if spin else 0.0)
         os.close(memory_fd)
     else:
-        channel = Channel(ours)
+        channel = Channel(ours, spin_s=SPIN_S if spin else 0.0)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
     return BrickProcess(popen, channel, scratch, console), read_paths
 

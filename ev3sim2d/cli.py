@@ -8,7 +8,15 @@ import sys
 
 from .commands import doctor, edit, grade, mazes, render, run, show
 
-COMMANDS = [run, mazes, grade, render, show, edit, doctor]  # a new subcommand: a module in commands/, one entry here
+COMMANDS = [
+    run,
+    mazes,
+    grade,
+    render,
+    show,
+    edit,
+    doctor,
+]  # a new subcommand: a module in commands/, one entry here
 
 
 def _parser() -> argparse.ArgumentParser:

@@ -77,6 +77,7 @@ def run_programs(
     sandbox: bool = True,
     scratch_in: Path | None = None,
     program_seed: int | None = None,
+    spin: bool = True,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -86,6 +87,8 @@ def run_programs(
     sandbox: False only for measuring what the sandbox costs; a program is never graded without one.
     scratch_in: where each brick's scratch folder is made (default: the system's temporary folder).
     program_seed: the seed of the programs' `random` (default: seed, which also seeds sensor noise).
+    spin: whether simulator and bricks may spin while they wait for each other (False when other runs
+    share the cores, as in a class run with --jobs 2).
     Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
     simulator's): a program learns of the world only by its sensors.
     """
@@ -111,7 +114,7 @@ def run_programs(
         for i, program in enumerate(loaded):
             path = program.path.resolve()
             may_read = readable[i] if readable else [path.parent]
-            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in)
+            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in, spin=spin)
             bricks.append(brick)
             config = {
                 "protocol": PROTOCOL,
@@ -137,7 +140,7 @@ def run_programs(
             ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
         for port in ports:
             _await_hello(port)
-        session = Session(sim, ports, limit_us, hang_after_s, printed, echo)
+        session = Session(sim, ports, limit_us, hang_after_s, printed, echo, spin=spin)
         wall_start = _real_perf_counter()
         session.run()
         wall = _real_perf_counter() - wall_start

@@ -41,8 +41,10 @@ class Session:
         hang_after_s: float,
         printed: list | None = None,
         echo=None,
+        spin: bool = True,
     ) -> None:
         """printed: the list the ports add printed lines to; echo(line) shows them, in time order."""
+        self.spin_s = SPIN_S if spin else 0.0
         self.printed = printed if printed is not None else []
         self.echo = echo
         self.sim = sim
@@ -196,7 +198,7 @@ class Session:
                 self.drop(port, _why(err))
                 return
         else:
-            spin_end = _perf_counter() + (SPIN_S if cores_idle() else 0.0)
+            spin_end = _perf_counter() + (self.spin_s if cores_idle() else 0.0)
             heard = False
             while not heard:
                 for port in ports:

@@ -140,7 +140,7 @@ class SharedChannel(Channel):
     def _may_spin(self) -> bool:
         """The simulator looks at the machine's load (and tells the brick, which cannot see it)."""
         if self._simulator:
-            idle = cores_idle()
+            idle = self.spin_s > 0 and cores_idle()
             self._words[self._spin_word] = 1 if idle else 0
             return idle
         return bool(self._words[self._spin_word])

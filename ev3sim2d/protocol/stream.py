@@ -43,7 +43,7 @@ def cores_idle() -> bool:
 class Channel:
     """One end of a connection: send messages, receive them in order."""
 
-    def __init__(self, sock: socket.socket, spin_s: float = 0.0002) -> None:
+    def __init__(self, sock: socket.socket, spin_s: float = 0.002) -> None:
         self.sock = sock
         self.spin_s = spin_s if _DONTWAIT else 0.0
         self._buffer = bytearray()
