@@ -275,13 +275,13 @@ def _let_through(folder: Path) -> None:
             return
 
 
-def console_tail(path: Path) -> str:
-    """The end of what the brick's interpreter wrote to its console (a crash's message)."""
+def console_tail(path: Path, keep_bytes: int = KEEP_CONSOLE_BYTES) -> str:
+    """The end of what a process wrote to its console file (a crash's message)."""
     try:
         with open(path, "rb") as f:
             f.seek(0, os.SEEK_END)
             size = f.tell()
-            f.seek(max(0, size - KEEP_CONSOLE_BYTES))
+            f.seek(max(0, size - keep_bytes))
             return f.read().decode("utf-8", "replace").strip()
     except OSError:
         return ""

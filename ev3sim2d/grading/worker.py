@@ -32,7 +32,7 @@ import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from ..brick_process import become_subreaper, kill_orphans
+from ..brick_process import become_subreaper, console_tail, kill_orphans
 from .result import VariantResult
 
 RESULT_FILE = "result.json"
@@ -331,17 +331,6 @@ def start_job(job: Job, lesson, use_fork: bool) -> RunningJob:
     return RunningJob(job, popen=popen)
 
 
-def _console_tail(folder: Path) -> str:
-    try:
-        with open(folder / CONSOLE_FILE, "rb") as f:
-            f.seek(0, os.SEEK_END)
-            size = f.tell()
-            f.seek(max(0, size - KEEP_CONSOLE_BYTES))
-            return f.read().decode("utf-8", "replace").strip()
-    except OSError:
-        return ""
-
-
 def _signal_name(number: int) -> str:
     try:
         return signal.Signals(number).name
@@ -379,7 +368,7 @@ def collect(running: RunningJob) -> JobOutcome:
             wall_s=wall,
         )
     code = running.returncode if running.returncode is not None else 0
-    tail = _console_tail(folder)
+    tail = console_tail(folder / CONSOLE_FILE, KEEP_CONSOLE_BYTES)
     if code == EXIT_CHECK_ERROR:
         raise CheckError(f"a check failed while scoring {job.entry} in variant {job.variant_name}:\n{tail}")
     if code < 0:
