@@ -52,7 +52,8 @@ def main(argv: list[str]) -> int:
     brick = BrickRun(channel, config)
     brick.prepare()  # the virtual clock, the shim: before the sandbox, while the files are readable
     report = _enter_sandbox(config, fd)
-    sys.path.remove(root)
+    sys.path.remove(root)  # the program finds only the shim, Python's own and third-party packages
+    sys.path.extend(p for p in config.get("site_packages", ()) if p not in sys.path)  # (a wheel's root)
     channel.send(["hello", {"protocol": PROTOCOL, "sandbox": report, "python": sys.version.split()[0]}])
     brick.run()
     return 0
