@@ -103,6 +103,7 @@ class BrickLink:
         self.ops: list = []
         self.stopped: str | None = None  # why the simulator ended the run
         self.last_sent = _perf_counter()
+        self.last_sent_us = 0  # the brick's clock when it last sent something
         scheduler.on_progress = self.progress
 
     # ------------------------------------------------------------ plumbing
@@ -129,14 +130,16 @@ class BrickLink:
     def progress(self) -> None:
         """The clock moves between ticks (a program computing with short sleeps): now and then say so,
         so that the simulator does not take the brick for hung."""
-        if _perf_counter() - self.last_sent > HEARTBEAT_S:
-            self.ops.append(["@", self.scheduler.now_us])
+        now_us = self.scheduler.now_us
+        if now_us != self.last_sent_us and _perf_counter() - self.last_sent > HEARTBEAT_S:
+            self.ops.append(["@", now_us])
             self.flush()
 
     def flush(self) -> None:
         """Send the queued ops (no answer wanted)."""
         if self.ops:
             self.last_sent = _perf_counter()
+            self.last_sent_us = self.scheduler.now_us
             ops, self.ops = self.ops, []
             try:
                 self.channel.send(["ops", ops])
