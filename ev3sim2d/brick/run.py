@@ -2,8 +2,9 @@
 
 The brick's scheduler turns the program's threads in virtual time; each time
 its clock passes a tick it tells the simulator (link.tick), which steps the
-world in lockstep.  The run ends when every main task has ended, at the time
-limit, on a deadlock, or when the simulator stops it; the `end` message says
+world in lockstep.  The run ends when every main task has ended, on a deadlock,
+or when the simulator stops it (at its time limit, which the brick is not told:
+nothing in here says which world or variant this is); the `end` message says
 which, and carries the program's error if it had one.
 """
 
