@@ -20,7 +20,41 @@ from .trace import OutputLine
 MAX_KEYS = 10_000
 MAX_LINE = 2_000  # characters of one printed line that are kept
 MAX_RECORDED_LINES = 5_000
+MAX_EVENTS = 20_000  # sounds, LED changes, LCD frames of one brick (calls cost a brick no time)
+MAX_LCD_FRAMES = 2_000
 LCD_BYTES = 178 * 128
+# what a sound's details may hold, and the range of each number (the renderer plays them back)
+SOUND_NUMBERS = {
+    "frequency": (0.0, 20_000.0),
+    "length_ms": (0.0, 60_000.0),
+    "delay_ms": (0.0, 60_000.0),
+    "repeats": (0, 100),
+    "duration": (0.0, 3_600.0),
+    "volume": (0.0, 100.0),
+    "pct": (0.0, 100.0),
+    "play_type": (0, 10),
+}
+SOUND_TEXTS = ("args", "text", "wav_file", "espeak_opts", "channel")
+MAX_NOTES = 100
+
+
+def clean_sound(details: dict) -> dict:
+    """A sound's details as the trace keeps them: known keys only, numbers finite and in range, texts
+    short, at most MAX_NOTES notes; a brick sends what it likes, and the renderer must not choke."""
+    clean: dict = {}
+    for key, value in details.items():
+        if key in SOUND_NUMBERS:
+            if type(value) in (int, float) and value == value and abs(value) != float("inf"):
+                low, high = SOUND_NUMBERS[key]
+                clean[key] = type(low)(min(max(value, low), high))
+        elif key in SOUND_TEXTS:
+            if type(value) is str:
+                clean[key] = value[:500]
+        elif key == "end_delay":
+            clean[key] = bool(value)
+        elif key == "notes" and type(value) is list:
+            clean[key] = [clean_sound(note) for note in value[:MAX_NOTES] if type(note) is dict]
+    return clean
 
 
 class NoButtonPress(RuntimeError):
@@ -50,6 +84,9 @@ class BrickPort:
         self.gone: str | None = None  # the brick broke the protocol or died
         self.volume = 100
         self.dropped_lines = 0
+        self.events = 0  # recorded events (sounds, LEDs, LCD frames) and those dropped past the cap
+        self.dropped_events = 0
+        self.lcd_frames = 0
         self.last_heard = 0.0
         self.hello: dict | None = None
         self._answers: list = []  # answers to the ops of the batch being applied
@@ -207,13 +244,17 @@ class BrickPort:
         except OSError as err:
             return [err.errno or errno.EIO, err.strerror or str(err)]
         if device.sysfs_class == "leds":
-            self.trace.add_event(
-                self.time_us / 1e6,
-                self.index,
-                "leds",
-                {n: led.brightness for n, led in self.brick.leds.items()},
-            )
+            self._event(self.time_us / 1e6, "leds", {n: led.brightness for n, led in self.brick.leds.items()})
         return None
+
+    def _event(self, t_s: float, kind: str, data) -> bool:
+        """Record an event in the trace, up to MAX_EVENTS of this brick's; False when it is dropped."""
+        if self.events >= MAX_EVENTS:
+            self.dropped_events += 1
+            return False
+        self.events += 1
+        self.trace.add_event(t_s, self.index, kind, data)
+        return True
 
     def _checked_write(self, op: list) -> list:
         device, attribute, _ = self._key(op)
@@ -263,7 +304,7 @@ class BrickPort:
                 raise TypeError("match must be a dict")
             return self.brick.list_device_names(str(class_name), str(pattern), match)
         if feature == "sound":
-            kind, details = str(args[0]), dict(args[1])
+            kind, details = str(args[0])[:50], clean_sound(dict(args[1]))
             if kind == "get_volume":
                 return self.volume
             if kind == "set_volume":
@@ -271,13 +312,17 @@ class BrickPort:
             elif details.get("duration"):
                 tick_s = self.trace.tick_s
                 self.robot.sound_until_tick = int((now_s + float(details["duration"])) // tick_s) + 1
-            self.trace.add_event(now_s, self.index, "sound", {"kind": kind, **details})
+            self._event(now_s, "sound", {"kind": kind, **details})
             return None
         if feature == "display":
             pixels = bytes.fromhex(args[0])
             if len(pixels) != LCD_BYTES:
                 raise ValueError(f"an LCD frame has {LCD_BYTES} bytes")
-            self.trace.add_event(now_s, self.index, "lcd", {"frame": self.trace.add_lcd_frame(pixels)})
+            if self.lcd_frames < MAX_LCD_FRAMES and self.events < MAX_EVENTS:
+                self.lcd_frames += 1
+                self._event(now_s, "lcd", {"frame": self.trace.add_lcd_frame(pixels)})
+            else:
+                self.dropped_events += 1
             return None
         if feature == "buttons":
             pressed = [p.button for p in self.presses if p.down_at(now_s)]

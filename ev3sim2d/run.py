@@ -276,6 +276,7 @@ def _result(sim, programs, ports, bricks, wall, session) -> RunResult:
         "error_type": error["type"] if error else None,
         "error": error,
         "dropped_output_lines": dropped,
+        "dropped_events": sum(port.dropped_events for port in ports),
         "limit": limit,
     }
     sandbox = [dict((port.hello or {}).get("sandbox") or {}) for port in ports]

@@ -295,6 +295,7 @@ class BrickLink:
         now = self.scheduler.now_us
         if not answered:
             self.ops.append(["c", now, feature, args])
+            self.flush()  # an LCD frame is large: never let them pile up in the brick
             return None
         answer = self.ask([["C", now, feature, args]])[0]
         if isinstance(answer, dict) and "error" in answer:

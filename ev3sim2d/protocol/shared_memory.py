@@ -36,7 +36,8 @@ HEADER_BYTES = 256  # producer position, consumer position, asleep flag: 64 byte
 SIZE = 2 * (HEADER_BYTES + RING_BYTES)
 SLEEP_CHECK_S = 0.002  # a sleeper looks again this often, whatever the wake-ups do
 SEND_TIMEOUT_S = 10.0  # a full ring the other side never empties ends the connection
-_perf_counter = time.perf_counter
+_perf_counter = time.perf_counter  # the real clocks, bound before a brick makes `time` virtual
+_sleep = time.sleep
 _yield = getattr(os, "sched_yield", lambda: None)
 
 
@@ -94,7 +95,7 @@ class SharedChannel(Channel):
                     self.closed = True
                     raise ProtocolError("the other side does not read")
                 self._wake(asleep_at)
-                time.sleep(0.0001)
+                _sleep(0.0001)
                 continue
             start = self._written % RING_BYTES
             n = min(len(view), free, RING_BYTES - start)

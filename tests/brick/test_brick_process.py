@@ -63,3 +63,30 @@ def test_a_program_that_kills_its_own_process_ends_the_run_with_what_it_did(run)
     assert result.status == "crashed"
     assert result.sim_time_s >= 1.0
     assert result.trace.poses(0)[-1][0] != result.trace.poses(0)[0][0]  # it drove before it died
+
+
+def test_sounds_and_frames_forged_through_the_link_cannot_choke_the_simulator_or_the_video(run, tmp_path):
+    """A student calls the shim's link directly: absurd beeps (a billion repeats, a text frequency,
+    infinite durations) and an LCD frame flood, all at no cost in time. The trace keeps what is
+    playable and a bounded number of events, and the video of the run is still made, quickly."""
+    result = run(
+        """
+        from ev3dev2 import _link
+        import time
+        _link.call("sound", "beep", {"notes": [{"frequency": "x", "repeats": 10**9, "length_ms": 1e308}] * 10**4,
+                                     "duration": float("inf"), "volume": -5, "evil": "y" * 10**6})
+        _link.call("sound", "set_volume", {"pct": float("nan")})
+        for i in range(2500):
+            _link.call("display", bytes(178 * 128))
+        time.sleep(1)
+        """
+    )
+    assert result.status == "finished", result.reason
+    sounds = [e for e in result.trace.events if e[2] == "sound"]
+    beep = sounds[0][3]
+    assert "evil" not in beep and "duration" not in beep and beep["volume"] == 0.0
+    assert len(beep["notes"]) == 100 and beep["notes"][0] == {"repeats": 100, "length_ms": 60000.0}
+    assert len(result.trace.lcd_frames) <= 2000 and result.trace.result["dropped_events"] > 0
+    from ev3sim2d.render.timeline import sound_spans
+
+    assert len(sound_spans(result.trace)) <= 100 * 100
