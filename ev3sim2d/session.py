@@ -147,13 +147,17 @@ class Session:
                 self._wait([port])
                 continue
             if limit is not None and target >= limit:
-                self._step_to(limit)
-                port.time_us = limit
-                port.end = {"t_us": limit, "status": "time_limit", "error": None}
-                self.drop(port, "time limit")
-                return
+                return self._stop_at_limit([port])
             self._step_to(target)
             port.marker = None
+
+    def _stop_at_limit(self, live: list[BrickPort]) -> None:
+        """Every brick still running has passed the time limit: the world runs to it, and the run ends."""
+        self._step_to(self.limit_us)
+        for port in live:
+            port.time_us = self.limit_us
+            port.end = {"t_us": self.limit_us, "status": "time_limit", "error": None}
+            self.drop(port, "time limit")
 
     def _run(self) -> None:
         ports = self.ports
@@ -171,12 +175,7 @@ class Session:
             if not behind:
                 target = min(p.marker for p in live)
                 if limit is not None and target >= limit:
-                    self._step_to(limit)
-                    for port in live:
-                        port.time_us = limit
-                        port.end = {"t_us": limit, "status": "time_limit", "error": None}
-                        self.drop(port, "time limit")
-                    return
+                    return self._stop_at_limit(live)
                 self._step_to(target)
                 for port in live:
                     if port.marker == target:
