@@ -207,7 +207,7 @@ def _program_error(port: BrickPort, program: Program) -> dict | None:
 def _crash(port: BrickPort, brick: BrickProcess) -> tuple[str, str | None]:
     """Why a brick ended without saying so: a limit it ran into, or how its process died."""
     name = brick.ended_by_signal()
-    console = getattr(brick, "console_text", "")
+    console = brick.console_text
     if name in LIMIT_SIGNALS:
         return LIMIT_SIGNALS[name], LIMIT_SIGNALS[name]
     if "MemoryError" in console:

@@ -95,7 +95,7 @@ class BrickLink:
         self.fixed: dict[int, tuple] = {}  # key -> (value, the device's writes then; -1: for ever)
         self.writes: list[int] = []  # device -> how many times the program wrote to it
         self.values: list = []  # the values reads are answered from
-        self.label = 0  # the interval the values serve (its first tick); -1: none
+        self.label = 0  # the interval the values serve (its first tick)
         self.declared = 0  # the last tick marker sent: the brick's clock is in [declared, declared + tick)
         self.ahead: tuple[int, list] | None = None  # a snapshot that arrived for a later interval
         self.stale: set[int] = set()  # devices written since the moment of the values
