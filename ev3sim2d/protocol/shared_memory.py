@@ -154,17 +154,8 @@ class SharedChannel(Channel):
         self._words[self._in[2]] = 1 if flag else 0
 
     def take_wakeups(self) -> None:
-        """Read the wake-up bytes off the socket; ProtocolError if the other side is gone."""
-        try:
-            data = self.sock.recv(4096, socket.MSG_DONTWAIT)
-        except BlockingIOError:
-            return
-        except OSError as err:
-            self.closed = True
-            raise ConnectionGone(f"the connection is gone ({err})") from None
-        if not data:
-            self.closed = True
-            raise ConnectionGone("the other side closed the connection")
+        """Read the wake-up bytes off the socket; ConnectionGone if the other side is gone."""
+        self._recv(4096, socket.MSG_DONTWAIT)
 
     def _sleep_until_data(self, timeout_s: float | None = None) -> bool:
         """Block (not spin) until bytes arrive or timeout_s; False when the time is up."""

@@ -106,20 +106,25 @@ class Channel:
 
     def _fill(self, flags: int) -> bool:
         """Read what the socket has (waiting for something unless flags say not to); False if nothing."""
+        data = self._recv(1 << 16, flags)
+        if data is None:
+            return False
+        self._buffer += data
+        return True
+
+    def _recv(self, size: int, flags: int) -> bytes | None:
+        """Bytes from the socket, None if none are there yet; ConnectionGone once the other side is."""
         try:
-            data = self.sock.recv(1 << 16, flags)
-        except BlockingIOError:
-            return False
-        except InterruptedError:
-            return False
+            data = self.sock.recv(size, flags)
+        except (BlockingIOError, InterruptedError):
+            return None
         except OSError as err:
             self.closed = True
             raise ConnectionGone(f"the connection is gone ({err})") from None
         if not data:
             self.closed = True
             raise ConnectionGone("the other side closed the connection")
-        self._buffer += data
-        return True
+        return data
 
     def _take(self) -> list | None:
         buffer = self._buffer
