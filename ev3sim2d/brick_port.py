@@ -75,6 +75,7 @@ class BrickPort:
         self.echo = echo
         self.queue: deque = deque()
         self.keys: list[tuple] = []  # key -> (device or None, attribute, error if unknown)
+        self._direct: dict[int, object] = {}  # key -> its device's writer, for writes that are nothing more
         self.subscribed: list[int] = []
         self._live_readers: list = []  # the subscribed attributes' readers, in the same order
         self.marker: int | None = None  # a tick the brick passed that the world has not reached
@@ -119,33 +120,26 @@ class BrickPort:
     def run_ops(self, world_us: int) -> None:
         """Apply queued ops until a tick marker ahead of the world (kept in self.marker) or the queue's end."""
         queue = self.queue
-        keys = self.keys
-        while queue and self.marker is None and self.end is None and self.gone is None:
+        direct = self._direct
+        while queue:
+            if self.marker is not None or self.end is not None or self.gone is not None:
+                return
             op = queue.popleft()
             if type(op) is not list or not op:
                 raise ProtocolError("an op must be a non-empty JSON array")
             kind = op[0]
-            if kind == "w":  # the hot path, inline: a checked write (a value the device refuses is
-                # ignored: the brick checked it against the same rule, so only a lying brick sends one)
-                if len(op) == 4:
-                    self._at(op[3])
-                elif len(op) != 3:
-                    raise ProtocolError("a write is [w, key, value] or [w, key, value, t_us]")
-                key, value = op[1], op[2]
-                if type(key) is not int or not 0 <= key < len(keys):
-                    raise ProtocolError(f"op {op[:1]} names an undefined key")
-                if type(value) is not str:
-                    raise ProtocolError("a written value is text")
-                device, attribute, error = keys[key]
-                if error is None:
-                    writer = device.writers.get(attribute)
-                    if writer is not None and device.sysfs_class != "leds":
+            if kind == "w":  # the hot path: a write the brick checked against the attribute's rule (a
+                # value the device refuses is ignored: only a lying brick sends one)
+                if len(op) == 3:
+                    writer = direct.get(op[1])
+                    value = op[2]
+                    if writer is not None and type(value) is str:
                         try:
                             writer(value)
                         except OSError:
                             pass
-                    else:
-                        self._apply_write(key, value)
+                        continue
+                self._write_op(op)
             elif kind == "t":
                 tick = op[1] if len(op) == 2 else None
                 if type(tick) is not int or tick < self.time_us or tick < world_us:
@@ -176,6 +170,19 @@ class BrickPort:
             else:
                 raise ProtocolError(f"unknown op {kind!r}")
 
+    def _write_op(self, op: list) -> None:
+        """A write off the hot path: one whose time is recorded (LEDs), or one to check in full."""
+        if len(op) == 4:
+            self._at(op[3])
+        elif len(op) != 3:
+            raise ProtocolError("a write is [w, key, value] or [w, key, value, t_us]")
+        key, value = op[1], op[2]
+        if type(key) is not int or not 0 <= key < len(self.keys):
+            raise ProtocolError(f"op {op[:1]} names an undefined key")
+        if type(value) is not str:
+            raise ProtocolError("a written value is text")
+        self._apply_write(key, value)
+
     def _key(self, op: list, at: int = 1):
         key = op[at] if len(op) > at else None
         if type(key) is not int or not 0 <= key < len(self.keys):
@@ -194,6 +201,9 @@ class BrickPort:
             self.keys.append((None, attribute, [err.errno, err.strerror or str(err)]))
             return
         self.keys.append((device, attribute, None))
+        writer = device.writers.get(attribute)
+        if writer is not None and device.sysfs_class != "leds":  # an LED's writes are events too
+            self._direct[op[1]] = writer
 
     def _read(self, key: int):
         device, attribute, error = self.keys[key]
