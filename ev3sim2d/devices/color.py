@@ -45,13 +45,18 @@ class ColorSensor(LegoSensor):
     def measure(self, mode: str) -> tuple[float, ...]:
         if mode == "COL-AMBIENT":
             return (self.ambient,)
-        cells = self._cells()
-        if mode == "COL-REFLECT":
-            table = self.floor.reflected
+        if mode == "COL-REFLECT":  # the line followers' mode: summed in place
+            x, y, _ = self.position()
+            floor, h = self.floor, self.half
+            size = floor.cell_cm
+            rows = _overlaps(y - h, y + h, size, floor.height)
+            table = floor.reflected
             total = 0.0
-            for col, row, share in cells:
-                total += table[row][col] * share
+            for col, wx in _overlaps(x - h, x + h, size, floor.width):  # the order and products of _cells
+                for row, wy in rows:
+                    total += table[row][col] * (wx * wy)
             return (total,)
+        cells = self._cells()
         if mode == "COL-COLOR":
             col, row, _ = max(cells, key=lambda c: c[2])
             return (self.floor.color_id[row][col],)
