@@ -6,6 +6,9 @@ import argparse
 import os
 import sys
 
+# numpy's BLAS would start a thread per core that spins after each call: the simulator has no use for it
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 from .commands import doctor, edit, grade, mazes, render, run, show
 
 COMMANDS = [

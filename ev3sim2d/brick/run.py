@@ -10,6 +10,7 @@ which, and carries the program's error if it had one.
 
 from __future__ import annotations
 
+import gc
 import importlib
 import time
 
@@ -61,6 +62,8 @@ class BrickRun:
         for name in SHIM_MODULES:
             importlib.import_module(name)
         importlib.import_module("ev3dev2._link").connect(self.link)
+        gc.collect()
+        gc.freeze()  # the runtime and the shim: the program's collections need not look at them
 
     def _tick(self, tick_us: int) -> None:
         self.link.tick(tick_us)

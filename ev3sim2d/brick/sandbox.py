@@ -66,7 +66,6 @@ import signal
 import stat
 import struct
 import sys
-from dataclasses import dataclass, field
 
 _MIB = 1024 * 1024
 _M_ARENA_MAX = -8  # mallopt(3), glibc
@@ -189,22 +188,39 @@ class SandboxError(RuntimeError):
     """The sandbox could not be entered safely (e.g. root could not be given up): run nothing."""
 
 
-@dataclass
 class SandboxPolicy:
-    """What the program may touch once inside; everything else it may not."""
+    """What the program may touch once inside; everything else it may not.  (A plain class: the brick
+    imports this module at every start, and `dataclasses` alone costs it 10 ms.)"""
 
-    read_paths: list[str]  # files or folders the program may read (and execute); everything else unreadable
-    write_paths: list[str]  # folders it may read, create, write, delete in (its scratch folder)
-    keep_fds: list[int]  # inherited fds that must stay open (the connection); every other fd >= 3 is closed
-    cpu_s: int = 60  # RLIMIT_CPU (soft; hard = soft + 1)
-    memory_mb: int = 512  # RLIMIT_AS on top of what the process already uses
-    file_mb: int = 16  # RLIMIT_FSIZE
-    processes: int = 64  # processes and threads the program may create besides itself (RLIMIT_NPROC)
-    open_files: int = 256  # RLIMIT_NOFILE
-    unprivileged_uid: int = 65534  # uid and gid used when running as root
-    # Folders whose names may be listed but whose files are not readable: the site-packages
-    # folders, so that imports find packages there while ev3sim2d's own package stays closed.
-    list_paths: list[str] = field(default_factory=lambda: default_list_paths())
+    def __init__(
+        self,
+        read_paths: list[
+            str
+        ],  # files or folders the program may read (and execute); everything else unreadable
+        write_paths: list[str],  # folders it may read, create, write, delete in (its scratch folder)
+        keep_fds: list[
+            int
+        ],  # inherited fds that must stay open (the connection); every other fd >= 3 is closed
+        cpu_s: int = 60,  # RLIMIT_CPU (soft; hard = soft + 1)
+        memory_mb: int = 512,  # RLIMIT_AS on top of what the process already uses
+        file_mb: int = 16,  # RLIMIT_FSIZE
+        processes: int = 64,  # processes and threads the program may create besides itself (RLIMIT_NPROC)
+        open_files: int = 256,  # RLIMIT_NOFILE
+        unprivileged_uid: int = 65534,  # uid and gid used when running as root
+        # Folders whose names may be listed but whose files are not readable: the site-packages
+        # folders, so that imports find packages there while ev3sim2d's own package stays closed.
+        list_paths: list[str] | None = None,
+    ) -> None:
+        self.read_paths = read_paths
+        self.write_paths = write_paths
+        self.keep_fds = keep_fds
+        self.cpu_s = cpu_s
+        self.memory_mb = memory_mb
+        self.file_mb = file_mb
+        self.processes = processes
+        self.open_files = open_files
+        self.unprivileged_uid = unprivileged_uid
+        self.list_paths = default_list_paths() if list_paths is None else list_paths
 
 
 # ---------------------------------------------------------------- what a program may read
