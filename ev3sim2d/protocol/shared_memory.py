@@ -29,7 +29,7 @@ import socket
 import time
 
 from .messages import ConnectionGone, ProtocolError
-from .stream import Channel, cores_idle
+from .stream import Channel, cores_idle, defer_wake, flush_wakes
 
 RING_BYTES = 1 << 20
 HEADER_BYTES = 256  # producer position, consumer position, asleep flag: 64 bytes apart
@@ -74,6 +74,8 @@ class SharedChannel(Channel):
         self._out_data = out_ring * 8 + HEADER_BYTES
         self._in_data = in_ring * 8 + HEADER_BYTES
         self._written = 0  # our producer position (ours: never read back from shared memory)
+        self._defer = False  # wake the reader only when this process waits (when neither side spins)
+        self._wake_deferred = False
         self._read = 0  # our consumer position
 
     # ------------------------------------------------------------------ sending
@@ -103,7 +105,20 @@ class SharedChannel(Channel):
             self._written += n
             words[produced_at] = self._written
             view = view[n:]
-        self._wake(asleep_at)
+        if not self._defer:
+            self._wake(asleep_at)
+        elif not self._wake_deferred:
+            self._wake_deferred = True
+            defer_wake(self)
+
+    def wake_now(self) -> None:
+        """The deferred wake-up (see stream.flush_wakes): the reader may read what was sent."""
+        self._wake_deferred = False
+        if not self.closed:
+            try:
+                self._wake(self._out[2])
+            except ConnectionGone:
+                pass  # the reader is gone: its next read says so
 
     def _wake(self, asleep_at: int) -> None:
         if self._words[asleep_at]:
@@ -143,8 +158,10 @@ class SharedChannel(Channel):
         if self._simulator:
             idle = self.spin_s > 0 and cores_idle()
             self._words[self._spin_word] = 1 if idle else 0
-            return idle
-        return bool(self._words[self._spin_word])
+        else:
+            idle = bool(self._words[self._spin_word])
+        self._defer = not idle
+        return idle
 
     def data_waiting(self) -> bool:
         return self._words[self._in[0]] != self._read or bool(self._buffer)
@@ -163,6 +180,7 @@ class SharedChannel(Channel):
         in_produced = self._in[0]
         words = self._words
         self.asleep(True)
+        flush_wakes()
         try:
             while words[in_produced] == self._read:
                 wait = SLEEP_CHECK_S

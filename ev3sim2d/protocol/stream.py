@@ -19,6 +19,20 @@ _perf_counter = time.perf_counter  # the real clock, whatever a program does to 
 _DONTWAIT = getattr(socket, "MSG_DONTWAIT", 0)
 _CORES = os.cpu_count() or 1
 _load = {"checked": -1.0, "idle": True}
+_deferred_wakes: list = []  # channels whose reader may sleep and has not been woken yet
+
+
+def defer_wake(channel) -> None:
+    """Wake channel's reader only when this process is about to wait (flush_wakes), not now."""
+    _deferred_wakes.append(channel)
+
+
+def flush_wakes() -> None:
+    """Before this process blocks: wake the readers it deferred.  On a shared core a woken process
+    takes the core at once, so a process that wakes its peer only when it has nothing left to do
+    lets both work through every tick they can before the core changes hands."""
+    while _deferred_wakes:
+        _deferred_wakes.pop().wake_now()
 
 
 def cores_idle() -> bool:
@@ -96,9 +110,12 @@ class Channel:
             if left is not None and left <= 0:
                 return None
             if left is not None:
+                flush_wakes()
                 ready, _, _ = select.select([self.sock], [], [], left)
                 if not ready:
                     return None
+            if left is None:
+                flush_wakes()
             self._fill(0)
             message = self._take()
             if message is not None:
@@ -154,6 +171,9 @@ class Channel:
     def take_wakeups(self) -> None:
         """After select: nothing to do here (the data itself is on the socket)."""
 
+    def wake_now(self) -> None:
+        """A deferred wake-up (none here: a socket's reader wakes when the data arrives)."""
+
     def close(self) -> None:
         self.closed = True
         try:
@@ -173,6 +193,7 @@ def wait_for_any(channels: list[Channel], timeout_s: float) -> list[Channel]:
         waiting = [c for c in channels if c.data_waiting()]
         if waiting:
             return waiting
+        flush_wakes()
         ready, _, _ = select.select(channels, [], [], timeout_s)
         for channel in ready:
             channel.take_wakeups()

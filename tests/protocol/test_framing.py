@@ -115,3 +115,51 @@ def test_wait_for_any_says_which_channel_has_something():
 def test_encode_and_decode_are_each_others_inverse():
     message = ["reply", [None, ["int", -1050, 1050]], ["40"]]
     assert decode(encode(message)[:-1]) == message
+
+
+@pytest.mark.parametrize(
+    "line, message",
+    [(b' ["t", 1] ', ["t", 1]), (b'["snap",10000,["40"]]', ["snap", 10000, ["40"]]), (b'["x", NaN]', None)],
+)
+def test_decode_takes_json_arrays_with_spaces_around_them(line, message):
+    if message is None:  # NaN is Python's JSON, not JSON: what encode can write must come back
+        assert decode(line)[0] == "x"
+    else:
+        assert decode(line) == message
+
+
+@pytest.mark.parametrize("bad", [b'["t", 1] x', b'["t", 1]]', b'["t", 1', b'"t"', b""])
+def test_decode_refuses_what_follows_or_falls_short_of_one_array(bad):
+    with pytest.raises(ProtocolError):
+        decode(bad)
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_a_deferred_wake_up_is_sent_when_the_sender_is_about_to_wait():
+    """When neither side may spin (runs share the cores), a sender wakes a sleeping reader only when it
+    has nothing left to do itself (it is about to wait): on one core the woken process would take the
+    core at once.  The message is in shared memory at once; the wake-up byte comes with flush_wakes."""
+    from ev3sim2d.protocol.stream import flush_wakes
+
+    sim, brick = shared_pair()
+    sim.spin_s = 0.0
+    assert sim.receive(timeout_s=0.01) is None  # no spinning: the simulator now defers its wake-ups
+    brick.asleep(True)  # the brick sleeps on its socket
+    sim.send(["snap", 10000, ["40"]])
+    brick.sock.setblocking(False)
+    with pytest.raises(BlockingIOError):
+        brick.sock.recv(16)  # no wake-up yet
+    assert brick.data_waiting()  # but the message is there for a reader that looks
+    flush_wakes()
+    assert brick.sock.recv(16) == b"w"
+    brick.sock.setblocking(True)
+    brick.asleep(False)
+    assert brick.receive(timeout_s=1) == ["snap", 10000, ["40"]]
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_a_sender_that_may_spin_wakes_a_sleeping_reader_at_once():
+    sim, brick = shared_pair()
+    brick.asleep(True)
+    sim.send(["snap", 10000, []])
+    assert brick.sock.recv(16) == b"w"
