@@ -74,6 +74,7 @@ class Job:
     keep_trace: bool = False  # write trace.npz when a check fails
     readable: str = ""  # the submission (file or folder): all the brick may read besides Python
     program_seed: int = 0  # the program's `random`: the same in every variant, so it cannot tell them apart
+    cpu: int | None = None  # the core the worker and its brick share (None: any, and they may spin)
 
 
 @dataclass
@@ -117,6 +118,17 @@ def _set_limits(job: Job) -> None:
     _limit(resource.RLIMIT_CORE, 0)
 
 
+def _pin(job: Job) -> None:
+    """Keep the worker and its brick (which inherits this) on one core when runs share the cores: they
+    take turns, and handing the turn over on one core costs a sixth of waking a process on another
+    (benchmarks/grade.py)."""
+    if job.cpu is not None and hasattr(os, "sched_setaffinity"):
+        try:
+            os.sched_setaffinity(0, {job.cpu})
+        except OSError:
+            pass
+
+
 def _redirect_console(folder: Path) -> None:
     """fds 1 and 2 (and so anything written to them, by Python or not) into the job's console file."""
     for stream in (sys.stdout, sys.stderr):
@@ -153,6 +165,7 @@ def run_job(job: Job, lesson) -> None:
         _redirect_console(folder)
         become_subreaper()
         _set_limits(job)
+        _pin(job)
         code = _run_and_score(job, lesson, folder)
     except MemoryError:
         code = EXIT_MEMORY
@@ -198,6 +211,7 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
             limits,
             scratch_in=folder,
             program_seed=job.program_seed,
+            spin=job.cpu is None,
         )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})

@@ -5,7 +5,7 @@ import os
 
 import pytest
 
-from ev3sim2d.grading.grader import grade, load_results
+from ev3sim2d.grading.grader import CoreShare, grade, load_results
 from ev3sim2d.grading.lesson import load_lesson
 from ev3sim2d.grading.submission import find_submissions
 
@@ -132,3 +132,21 @@ def test_an_interrupt_keeps_what_is_done_and_leaves_no_worker_behind(lesson, pro
         os.waitpid(-1, os.WNOHANG)  # no child process left, not even a zombie
     resumed = grade(lesson, find_submissions([programs]), jobs=2, results_path=results_file)
     assert resumed.reused == 1 and len(resumed.results) == 3
+
+
+@pytest.mark.parametrize(
+    "cores, jobs, running, expected",
+    [
+        ({0, 1}, 2, [], 0),  # two runs on two cores: each run keeps to a core of its own
+        ({0, 1}, 2, [0], 1),
+        ({0, 1}, 3, [0, 1], 0),
+        ({0, 1}, 3, [1, 0, 1], 0),
+        ({2, 5}, 2, [2], 5),  # the cores this process may use, whatever their numbers
+        ({0, 1}, 1, [], None),  # one run on two cores: a core each for simulator and brick, which spin
+        ({0, 1, 2, 3}, 2, [], None),
+        ({0, 1, 2, 3}, 3, [None], 0),
+    ],
+)
+def test_runs_share_out_the_cores_only_when_they_must(monkeypatch, cores, jobs, running, expected):
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: cores, raising=False)
+    assert CoreShare(jobs).least_used(running) == expected

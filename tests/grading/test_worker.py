@@ -2,6 +2,7 @@
 
 All of them are graded in one class run, two at a time, next to good programs."""
 
+import os
 import sys
 
 import pytest
@@ -85,3 +86,24 @@ def test_a_cpu_hog_is_stopped_by_the_cpu_limit(tmp_path):
     result = grade(lesson, find_submissions([hog]), jobs=2).results[0]
     assert result.status == "timeout"
     assert "CPU time" in result.variants[0].message
+
+
+@pytest.mark.skipif(not hasattr(os, "sched_setaffinity"), reason="no CPU affinity here")
+def test_a_worker_given_a_core_keeps_to_it_and_so_does_its_brick():
+    from ev3sim2d.grading.worker import Job, _pin
+
+    core = min(os.sched_getaffinity(0))
+    job = Job(0, 0, "p.py", "f", "l", "v", 1.0, 0, 1.0, 1.0, 1.0, 100, 1, cpu=core)
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # pinning is for good: do it in a child, as a worker does
+        _pin(job)
+        child = os.fork()  # a brick is a child of its worker
+        if child == 0:
+            os.write(write, repr(sorted(os.sched_getaffinity(0))).encode())
+            os._exit(0)
+        os.waitpid(child, 0)
+        os._exit(0)
+    os.close(write)
+    os.waitpid(pid, 0)
+    assert os.read(read, 100).decode() == repr([core])
