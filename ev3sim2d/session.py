@@ -143,6 +143,7 @@ class Session:
 
     def _run_one(self, port: BrickPort) -> None:
         """_run for one brick (the common case), without the bookkeeping of several."""
+        port.channel.peer_may_defer = True  # nobody else waits for the world while this brick computes
         limit = self.limit_us
         while port.end is None and port.gone is None:
             self._drain(port)

@@ -70,6 +70,9 @@ class SharedChannel(Channel):
         self._out = (out_ring, out_ring + 8, out_ring + 16)
         self._in = (in_ring, in_ring + 8, in_ring + 16)
         self._spin_word = to_brick + 24  # 1 while the simulator finds a core free for spinning
+        self._defer_word = to_brick + 28  # 1 when the brick may defer its wake-ups (see peer_may_defer)
+        # (simulator's end: peer_may_defer says whether its brick may wake it only when the brick
+        # waits; only with one brick: with several, one that computes on would hold up the others)
         self._simulator = simulator
         self._out_data = out_ring * 8 + HEADER_BYTES
         self._in_data = in_ring * 8 + HEADER_BYTES
@@ -155,12 +158,15 @@ class SharedChannel(Channel):
 
     def _may_spin(self) -> bool:
         """The simulator looks at the machine's load (and tells the brick, which cannot see it)."""
+        words = self._words
         if self._simulator:
             idle = self.spin_s > 0 and cores_idle()
-            self._words[self._spin_word] = 1 if idle else 0
+            words[self._spin_word] = 1 if idle else 0
+            words[self._defer_word] = 1 if self.peer_may_defer and not idle else 0
+            self._defer = not idle
         else:
-            idle = bool(self._words[self._spin_word])
-        self._defer = not idle
+            idle = bool(words[self._spin_word])
+            self._defer = not idle and bool(words[self._defer_word])
         return idle
 
     def data_waiting(self) -> bool:

@@ -63,6 +63,7 @@ class Channel:
         self._buffer = bytearray()
         self._start = 0
         self.closed = False
+        self.peer_may_defer = False  # (shared memory only: see SharedChannel)
 
     def fileno(self) -> int:
         return self.sock.fileno()

@@ -163,3 +163,25 @@ def test_a_sender_that_may_spin_wakes_a_sleeping_reader_at_once():
     brick.asleep(True)
     sim.send(["snap", 10000, []])
     assert brick.sock.recv(16) == b"w"
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_a_brick_defers_its_wake_ups_only_when_the_simulator_says_it_may():
+    """With several bricks, one that computes on without waiting would hold up the world for the others:
+    the simulator lets a brick defer its wake-ups only when it is the only one."""
+    sim, brick = shared_pair()
+    sim.spin_s = 0.0
+    sim.sock.setblocking(False)
+    for may_defer, woken in ((False, True), (True, False)):
+        sim.peer_may_defer = may_defer
+        assert sim.receive(timeout_s=0.01) is None  # the simulator publishes what the brick may do
+        assert brick.receive(timeout_s=0.01) is None  # and the brick reads it
+        sim.asleep(True)
+        brick.send(["ops", [["t", 10000]]])
+        try:
+            got = sim.sock.recv(16) == b"w"
+        except BlockingIOError:
+            got = False
+        assert got is woken
+        sim.asleep(False)
+        assert sim.receive(timeout_s=1) == ["ops", [["t", 10000]]]
