@@ -10,7 +10,9 @@ and waits on the socket pair, which carries nothing but wake-up bytes (sent
 only to a sleeper) and tells when the other process is gone.  A wake-up that
 crosses the flag is caught by the sleeper's short select timeout.  Spinning pays
 only while a core is free: the simulator looks at the machine's load and says
-in shared memory whether the brick (which cannot see it) may spin.
+in shared memory whether the brick (which cannot see it) may spin.  When nobody
+spins, a sender wakes a sleeper only when it is about to wait itself (see
+stream.flush_wakes), and a brick does so only if the simulator says it may.
 
 So a message costs two memory copies and no system call while both sides are
 busy, instead of a send and a receive.  Positions written by the other side are
