@@ -20,6 +20,7 @@ from __future__ import annotations
 import compileall
 import ctypes
 import os
+import select
 import shutil
 import signal
 import site
@@ -74,10 +75,7 @@ class BrickProcess:
         may take to end by itself, so that its exit status says how it ended."""
         self.channel.close()
         if patience_s > 0:
-            try:
-                self.popen.wait(timeout=patience_s)
-            except subprocess.TimeoutExpired:
-                pass
+            _wait_for_exit(self.popen, patience_s)
         try:
             os.killpg(self.popen.pid, signal.SIGKILL)
         except (ProcessLookupError, PermissionError, OSError):
@@ -105,6 +103,24 @@ class BrickProcess:
         return None
 
 
+def _wait_for_exit(popen: subprocess.Popen, timeout_s: float) -> None:
+    """Wait up to timeout_s for the process to end, and notice at once when it does (Popen.wait with a
+    timeout polls, sleeping up to 16 ms too long for a brick that ends within a few)."""
+    try:
+        fd = os.pidfd_open(popen.pid)
+    except (AttributeError, OSError):  # not Linux >= 5.3, or the process is gone already
+        fd = None
+    if fd is not None:
+        try:
+            select.select([fd], [], [], timeout_s)
+        finally:
+            os.close(fd)
+    try:
+        popen.wait(timeout=0 if fd is not None else timeout_s)
+    except subprocess.TimeoutExpired:
+        pass
+
+
 def shim_root() -> Path:
     """The folder that holds our `ev3dev2` package (installed copy first, then the source tree)."""
     for root in (PACKAGE_DIR / "_shim", PACKAGE_DIR.parent):
@@ -122,8 +138,9 @@ def site_packages() -> list[str]:
     return found
 
 
-def _compile_once() -> None:
-    """Bytecode for the brick's code and the shim, so that no brick compiles them (bricks write none)."""
+def compile_brick_code() -> None:
+    """Bytecode for the brick's code and the shim, so that no brick compiles them (bricks write none);
+    once per process (a grader does it before it forks its workers)."""
     global _compiled
     if _compiled:
         return
@@ -227,7 +244,7 @@ def start_brick(
     folder); a grading worker uses its job folder, which the grader removes even if the worker is
     killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
     share the machine's cores: see protocol/shared_memory.py)."""
-    _compile_once()
+    compile_brick_code()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
     if os.geteuid() == 0:
         os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes

@@ -62,7 +62,6 @@ class BrickRun:
         for name in SHIM_MODULES:
             importlib.import_module(name)
         importlib.import_module("ev3dev2._link").connect(self.link)
-        gc.collect()
         gc.freeze()  # the runtime and the shim: the program's collections need not look at them
 
     def _tick(self, tick_us: int) -> None:

@@ -24,7 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..brick_process import become_subreaper, kill_orphans
+from ..brick_process import become_subreaper, compile_brick_code, kill_orphans
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -172,7 +172,7 @@ def grade(
     earlier = load_results(results_file, lesson) if results_file and not regrade else {}
     for variant in lesson.variants:
         variant.world()  # read before forking, so every worker has it
-
+    compile_brick_code()  # once here, not in every worker
     done: dict[int, SubmissionResult] = {}
     pending: dict[int, _Pending] = {}
     queue: list[Job] = []
