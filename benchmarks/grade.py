@@ -7,20 +7,33 @@ student's folder or as a single file.  They are graded with the command a teache
 
     ev3sim2d grade line-follow CLASS --jobs 2 --json results.json
 
-Target: under 30 s of wall time on a 2-core machine.
-Run:  python benchmarks/grade.py [--jobs 2] [--students 30] [--keep DIR]
+Target: under 30 s of wall time on a 2-core machine.  The same class is then graded by the code of
+commit IN_PROCESS_COMMIT (taken from git), the last that ran programs inside the simulator's
+process, for the ratio in one run (that lesson had fewer variants, so the ratio is per run).
+Run:  python benchmarks/grade.py [--jobs 2] [--students 30] [--keep DIR] [--no-baseline]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
+import tarfile
 import tempfile
 import time
 from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+IN_PROCESS_COMMIT = "f72c7f3"
+# run `python -m ev3sim2d` from the old code on PYTHONPATH, not today's editable install
+OLD_MAIN = (
+    "import sys, runpy; "
+    "sys.meta_path = [f for f in sys.meta_path if not type(f).__module__.startswith('__editable__')]; "
+    "runpy.run_module('ev3sim2d', run_name='__main__')"
+)
 
 FOLLOWER = """\
 from ev3dev2.motor import OUTPUT_B, OUTPUT_C, MoveTank, SpeedPercent
@@ -58,6 +71,46 @@ def make_class(folder: Path, students: int) -> None:
             (folder / f"student{i:02d}.py").write_text(source)
 
 
+def grade_class(
+    folder: Path, results: Path, jobs: int, code: Path | None = None
+) -> tuple[float, float, dict]:
+    """Grade the class with `ev3sim2d grade`; code: an old source tree to run instead of today's.
+    Returns the wall time, the CPU time of the grader and its workers, and the results document."""
+    results.unlink(missing_ok=True)
+    args = ["grade", "line-follow", str(folder), "--jobs", str(jobs), "--json", str(results), "--quiet"]
+    env = {**os.environ, "PYTHONHASHSEED": "0"}
+    if code is None:
+        command, cwd = [sys.executable, "-m", "ev3sim2d", *args], None
+    else:
+        command, cwd = [sys.executable, "-c", OLD_MAIN, *args], code
+        env["PYTHONPATH"] = str(code)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    done = subprocess.run(command, capture_output=True, text=True, cwd=cwd, env=env)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if done.returncode != 0 or not results.is_file():
+        raise RuntimeError(f"grading failed:\n{done.stdout}\n{done.stderr}")
+    return wall, cpu, json.loads(results.read_text())
+
+
+def old_code(into: Path) -> Path | None:
+    """The source tree of IN_PROCESS_COMMIT, or None without the git history."""
+    archive = into / "code.tar"
+    made = subprocess.run(
+        ["git", "-C", str(ROOT), "archive", "-o", str(archive), IN_PROCESS_COMMIT],
+        capture_output=True,
+        text=True,
+    )
+    if made.returncode != 0:
+        print(f"(baseline skipped: git archive {IN_PROCESS_COMMIT} failed: {made.stderr.strip()})")
+        return None
+    with tarfile.open(archive) as tar:
+        tar.extractall(into / "code", filter="data")
+    return into / "code"
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
@@ -65,6 +118,7 @@ def main() -> int:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--students", type=int, default=30)
     parser.add_argument("--keep", metavar="DIR", help="make the class in DIR and keep it (and results.json)")
+    parser.add_argument("--no-baseline", action="store_true", help="do not grade the class with the old code")
     args = parser.parse_args()
 
     with tempfile.TemporaryDirectory() as scratch:
@@ -72,42 +126,42 @@ def main() -> int:
         folder = root / "class"
         folder.mkdir(parents=True, exist_ok=True)
         make_class(folder, args.students)
-        results = root / "results.json"
-        results.unlink(missing_ok=True)
-        command = [
-            sys.executable,
-            "-m",
-            "ev3sim2d",
-            "grade",
-            "line-follow",
-            str(folder),
-            "--jobs",
-            str(args.jobs),
-        ]
-        command += ["--json", str(results), "--quiet"]
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        start = time.perf_counter()
-        done = subprocess.run(command, capture_output=True, text=True)
-        wall = time.perf_counter() - start
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-        if done.returncode != 0 or not results.is_file():
-            print(done.stdout, done.stderr, file=sys.stderr)
+        try:
+            wall, cpu, data = grade_class(folder, root / "results.json", args.jobs)
+        except RuntimeError as err:
+            print(err, file=sys.stderr)
             return 1
-        data = json.loads(results.read_text())
         submissions = data["submissions"]
         runs = sum(len(s["variants"]) for s in submissions)
         full = sum(1 for s in submissions if s["score"] == s["max_score"])
         statuses = sorted({s["status"] for s in submissions})
-    print(
-        f"graded {len(submissions)} submissions of line-follow ({runs} runs, {len(data['variants'])} variants each) "
-        f"with --jobs {args.jobs} in {wall:.1f} s wall ({full} with full marks; statuses: {', '.join(statuses)})"
-    )
-    print(
-        f"CPU time of the grader and its workers: {cpu:.1f} s ({cpu / args.jobs:.1f} s per job slot: "
-        "the wall time on an otherwise idle machine)"
-    )
-    print(f"target: under 30 s -> {'met' if wall < 30 else 'NOT met'}")
+        print(
+            f"graded {len(submissions)} submissions of line-follow ({runs} runs, {len(data['variants'])} variants "
+            f"each) with --jobs {args.jobs} in {wall:.1f} s wall ({full} with full marks; statuses: "
+            f"{', '.join(statuses)})"
+        )
+        print(
+            f"CPU time of the grader and its workers: {cpu:.1f} s ({cpu / args.jobs:.1f} s per job slot: "
+            "the wall time on an otherwise idle machine)"
+        )
+        if args.students == 30 and args.jobs == 2:
+            print(f"target: under 30 s -> {'met' if wall < 30 else 'NOT met'}")
+        code = None if args.no_baseline else old_code(Path(scratch))
+        if code is not None:
+            try:
+                old_wall, old_cpu, old = grade_class(folder, Path(scratch) / "old.json", args.jobs, code)
+            except RuntimeError as err:
+                print(f"(baseline failed: {err})")
+                return 0
+            old_runs = sum(len(s["variants"]) for s in old["submissions"])
+            print(
+                f"the same class graded in the simulator's process (commit {IN_PROCESS_COMMIT}, {old_runs} runs): "
+                f"{old_wall:.1f} s wall, {old_cpu:.1f} s CPU"
+            )
+            print(
+                f"per run: {wall / runs:.3f} s wall now, {old_wall / old_runs:.3f} s then: "
+                f"ratio {(wall / runs) / (old_wall / old_runs):.2f}"
+            )
     return 0
 
 
