@@ -62,7 +62,7 @@ class BrickLimits:
 class BrickProcess:
     """A running brick: its process, the simulator's end of its connection, its scratch folder."""
 
-    popen: subprocess.Popen
+    popen: subprocess.Popen  # (or a brick_zygote.ZygoteChild, which behaves like one)
     channel: Channel
     scratch: Path
     console: Path
@@ -236,14 +236,19 @@ def brick_environment(scratch: Path) -> dict[str, str]:
 
 
 def start_brick(
-    readable: list[Path], shared_memory: bool = True, scratch_in: Path | None = None, spin: bool = True
+    readable: list[Path],
+    shared_memory: bool = True,
+    scratch_in: Path | None = None,
+    spin: bool = True,
+    zygote=None,
 ) -> tuple[BrickProcess, list[str]]:
     """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's).
 
     scratch_in: the folder to make the brick's scratch folder in (default: the system's temporary
     folder); a grading worker uses its job folder, which the grader removes even if the worker is
     killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
-    share the machine's cores: see protocol/shared_memory.py)."""
+    share the machine's cores: see protocol/shared_memory.py).  zygote: a BrickZygote to fork the brick
+    from (brick_zygote.py); a fresh process when it is None or gone."""
     compile_brick_code()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
     if os.geteuid() == 0:
@@ -256,16 +261,23 @@ def start_brick(
     passed = [theirs.fileno()] + ([memory_fd] if memory_fd >= 0 else [])
     argv = [sys.executable, "-s", "-S", "-B", "-P", str(BOOT), str(theirs.fileno()), str(memory_fd)]
     with open(console, "wb") as out:
-        popen = subprocess.Popen(
-            [*argv, str(PACKAGE_DIR.parent)],
-            stdin=subprocess.DEVNULL,
-            stdout=out,
-            stderr=out,
-            cwd=scratch,
-            env=brick_environment(scratch),
-            pass_fds=passed,
-            start_new_session=True,
-        )
+        popen = None
+        if zygote is not None:
+            try:
+                popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, out.fileno())
+            except RuntimeError:  # ZygoteGone
+                popen = None
+        if popen is None:
+            popen = subprocess.Popen(
+                [*argv, str(PACKAGE_DIR.parent)],
+                stdin=subprocess.DEVNULL,
+                stdout=out,
+                stderr=out,
+                cwd=scratch,
+                env=brick_environment(scratch),
+                pass_fds=passed,
+                start_new_session=True,
+            )
     theirs.close()
     _running.add(popen.pid)
     if memory_fd >= 0:

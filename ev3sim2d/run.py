@@ -78,6 +78,7 @@ def run_programs(
     scratch_in: Path | None = None,
     program_seed: int | None = None,
     spin: bool = True,
+    zygote=None,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -89,6 +90,7 @@ def run_programs(
     program_seed: the seed of the programs' `random` (default: seed, which also seeds sensor noise).
     spin: whether simulator and bricks may spin while they wait for each other (False when other runs
     share the cores, as in a class run with --jobs 2).
+    zygote: a BrickZygote to fork the bricks from (a class run's), instead of starting each afresh.
     Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
     simulator's): a program learns of the world only by its sensors.
     """
@@ -114,7 +116,7 @@ def run_programs(
         for i, program in enumerate(loaded):
             path = program.path.resolve()
             may_read = readable[i] if readable else [path.parent]
-            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in, spin=spin)
+            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote)
             bricks.append(brick)
             config = {
                 "protocol": PROTOCOL,

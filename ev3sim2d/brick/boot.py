@@ -7,6 +7,10 @@ socket), ROOT the folder that holds the `ev3sim2d` package.  Only the standard l
 ev3sim2d.protocol and the ev3dev2 shim are loaded here: nothing of the world,
 the devices, the lesson or the grader exists in this process.
 
+`boot.py zygote CONTROL_FD ROOT SHIM_ROOT SITE_PACKAGES` starts a zygote instead
+(zygote.py): it loads the same and forks a brick per request, which goes on
+from run_brick as a fresh brick goes on from main.
+
 Order matters: the welcome (configuration) arrives first; the virtual clock
 and the shim are installed while every file may still be read; then the
 sandbox closes the process in (sandbox.py); only then is the program's file
@@ -31,8 +35,39 @@ def _connect(fd: int, memory_fd: int):
 
 
 def main(argv: list[str]) -> int:
-    fd, memory_fd, root = int(argv[1]), int(argv[2]), argv[3]
+    if argv[1] == "zygote":
+        return _zygote(int(argv[2]), argv[3], argv[4], json_list(argv[5]))
+    root = argv[3]
     sys.path.insert(0, root)
+    return run_brick(int(argv[1]), int(argv[2]), root)
+
+
+def json_list(text: str) -> list[str]:
+    import json
+
+    return [str(p) for p in json.loads(text)]
+
+
+def _zygote(control_fd: int, root: str, shim_root: str, site_packages: list[str]) -> int:
+    """Load everything a brick loads before its program, then fork a brick per request (zygote.py)."""
+    import gc
+    import importlib
+
+    sys.path[:0] = [root, shim_root]
+    sys.path.extend(p for p in site_packages if p not in sys.path)
+    import ev3sim2d.protocol  # noqa: F401
+    from ev3sim2d.brick import sandbox, zygote  # noqa: F401
+    from ev3sim2d.brick.run import SHIM_MODULES
+
+    for name in SHIM_MODULES:
+        importlib.import_module(name)
+    gc.collect()
+    gc.freeze()  # a forked brick's collections never walk (and so never copy) the zygote's pages
+    return zygote.serve(control_fd, root, run_brick)
+
+
+def run_brick(fd: int, memory_fd: int, root: str) -> int:
+    """A brick's life from its connection on: welcome, runtime and shim, sandbox, hello, program."""
     from ev3sim2d.protocol import PROTOCOL, ProtocolError
 
     channel = _connect(fd, memory_fd)
@@ -44,7 +79,8 @@ def main(argv: list[str]) -> int:
         channel.send(["end", {"t_us": 0, "status": "refused", "error": None}])
         return 2
     config = welcome[1]
-    sys.path[1:1] = [config["shim_root"]]
+    if config["shim_root"] not in sys.path:
+        sys.path[1:1] = [config["shim_root"]]
     sys.path.extend(p for p in config.get("site_packages", ()) if p not in sys.path)
 
     from ev3sim2d.brick.run import BrickRun

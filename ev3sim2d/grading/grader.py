@@ -18,6 +18,7 @@ import json
 import os
 import secrets
 import shutil
+import socket
 import tempfile
 import time
 from collections.abc import Callable
@@ -74,6 +75,19 @@ class CoreShare:
         if not self.cores:
             return None
         return min(self.cores, key=lambda core: (taken.count(core), core))
+
+
+def _start_zygote():
+    """The class run's brick zygote (brick_zygote.py), or None where there can be none: each brick is
+    then started afresh."""
+    if not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"):
+        return None
+    from ..brick_zygote import BrickZygote
+
+    try:
+        return BrickZygote()
+    except OSError:
+        return None
 
 
 def default_jobs() -> int:
@@ -232,6 +246,7 @@ def grade(
 
     running: list[RunningJob] = []
     cores = CoreShare(jobs)
+    zygote = _start_zygote() if use_fork else None
     queue.reverse()  # pop() from the end: submission by submission, in the order given
     gc.collect()
     gc.freeze()  # a forked worker's collections then skip everything the grader holds: a third faster
@@ -240,7 +255,7 @@ def grade(
             while queue and len(running) < jobs:
                 job = queue.pop()
                 job.cpu = cores.least_used([w.job.cpu for w in running])
-                running.append(start_job(job, lesson, use_fork))
+                running.append(start_job(job, lesson, use_fork, zygote))
             time.sleep(POLL_S)
             now = time.monotonic()
             for worker in list(running):
@@ -267,6 +282,8 @@ def grade(
         for worker in running:
             worker.kill("grading was interrupted")
             worker.reap()
+        if zygote is not None:
+            zygote.close()
         kill_orphans()
         shutil.rmtree(workdir, ignore_errors=True)
     return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started)

@@ -157,7 +157,7 @@ def _write_json(path: Path, data: dict) -> None:
     os.replace(part, path)
 
 
-def run_job(job: Job, lesson) -> None:
+def run_job(job: Job, lesson, zygote=None) -> None:
     """The worker's whole life (in the child process): limits, run, score, files, exit.  Never returns."""
     code = 0
     folder = Path(job.folder)
@@ -166,7 +166,7 @@ def run_job(job: Job, lesson) -> None:
         become_subreaper()
         _set_limits(job)
         _pin(job)
-        code = _run_and_score(job, lesson, folder)
+        code = _run_and_score(job, lesson, folder, zygote)
     except MemoryError:
         code = EXIT_MEMORY
     except BaseException:  # noqa: BLE001 - whatever it is, the parent reads it from the console file
@@ -184,7 +184,7 @@ def run_job(job: Job, lesson) -> None:
         os._exit(code)
 
 
-def _run_and_score(job: Job, lesson, folder: Path) -> int:
+def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
     from ..brick_process import BrickLimits
     from ..program import ProgramError
     from ..run import run_programs
@@ -212,6 +212,7 @@ def _run_and_score(job: Job, lesson, folder: Path) -> int:
             scratch_in=folder,
             program_seed=job.program_seed,
             spin=job.cpu is None,
+            zygote=zygote,
         )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})
@@ -316,8 +317,9 @@ class RunningJob:
                 pass
 
 
-def start_job(job: Job, lesson, use_fork: bool) -> RunningJob:
-    """Start a worker for the job; with use_fork, the child runs `run_job(job, lesson)` straight away."""
+def start_job(job: Job, lesson, use_fork: bool, zygote=None) -> RunningJob:
+    """Start a worker for the job; with use_fork, the child runs `run_job(job, lesson)` straight away,
+    with the class run's brick zygote, if it has one."""
     Path(job.folder).mkdir(parents=True, exist_ok=True)
     if use_fork:
         sys.stdout.flush()
@@ -328,7 +330,7 @@ def start_job(job: Job, lesson, use_fork: bool) -> RunningJob:
                 os.setpgid(0, 0)
             except OSError:
                 pass
-            run_job(job, lesson)
+            run_job(job, lesson, zygote)
         try:
             os.setpgid(pid, pid)  # also from here, so a kill can never miss the group
         except OSError:

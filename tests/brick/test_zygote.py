@@ -1,0 +1,139 @@
+"""Bricks forked from a zygote (what a class run does) behave exactly as bricks started afresh."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import time
+from pathlib import Path
+
+import pytest
+
+from ev3sim2d.brick_zygote import BrickZygote, ZygoteGone
+from ev3sim2d.run import run_programs
+from ev3sim2d.world.maze_file import find_maze, load_maze
+
+from ..test_determinism import SOURCES
+
+pytestmark = pytest.mark.skipif(
+    not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"), reason="needs fd passing"
+)
+
+STEERED = """\
+{source}
+from ev3dev2.motor import OUTPUT_B, OUTPUT_C, MoveTank, SpeedPercent
+from ev3dev2.sensor.lego import ColorSensor
+
+print("value", value)
+tank = MoveTank(OUTPUT_B, OUTPUT_C)
+eye = ColorSensor()
+for _ in range(50):
+    tank.on(SpeedPercent(20 + 40 * value), SpeedPercent(20 + eye.reflected_light_intensity / 5))
+"""
+
+
+@pytest.fixture(scope="module")
+def zygote():
+    z = BrickZygote()
+    yield z
+    z.close()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    return True
+
+
+@pytest.mark.parametrize("source", ["random_without_seeding", "numpy_default_rng_without_seed", "time_time"])
+def test_a_forked_brick_gives_the_run_of_a_fresh_one(zygote, tmp_path, source):
+    program = tmp_path / "steered.py"
+    program.write_text(STEERED.format(source=SOURCES[source]))
+    world = load_maze(find_maze("line"))
+    fresh = run_programs([program], world, time_limit_s=3, seed=4)
+    first = run_programs([program], world, time_limit_s=3, seed=4, zygote=zygote)
+    second = run_programs([program], world, time_limit_s=3, seed=4, zygote=zygote)  # after another brick
+    assert fresh.status == first.status == second.status == "finished", (fresh.reason, first.reason)
+    assert first.trace.fingerprint() == second.trace.fingerprint() == fresh.trace.fingerprint()
+    assert [line.text for line in first.trace.output] == [line.text for line in fresh.trace.output]
+    layers = [{k: str(v).split()[0] for k, v in r.items()} for r in (fresh.sandbox[0], first.sandbox[0])]
+    assert layers[0] == layers[1]  # every layer on (or off) as for a fresh brick
+
+
+def test_the_zygote_says_how_a_brick_ended(zygote, tmp_path):
+    """A brick killed by a signal is `crashed` with the signal's name, as a fresh brick is."""
+    program = tmp_path / "bomb.py"
+    program.write_text("import os, signal\nos.kill(os.getpid(), signal.SIGSEGV)\n")
+    world = load_maze(find_maze("empty"))
+    fresh = run_programs([program], world, time_limit_s=3)
+    forked = run_programs([program], world, time_limit_s=3, zygote=zygote)
+    assert forked.status == fresh.status == "crashed"
+    assert "SIGSEGV" in forked.reason and "SIGSEGV" in fresh.reason
+
+
+def test_a_brick_whose_simulator_goes_away_is_killed(zygote, tmp_path):
+    """A grading worker killed at the wall-clock limit takes its brick with it, as when the brick was its
+    child: the zygote sees the worker's end of the reply socket close, and kills the brick."""
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    read, write = os.pipe()
+    worker = os.fork()
+    if worker == 0:  # a worker: ask for a brick, never welcome it, die
+        try:
+            a, b = socket.socketpair()
+            with open(scratch / "console.log", "wb") as console:
+                child = zygote.spawn(scratch, b.fileno(), -1, console.fileno())
+            os.write(write, str(child.pid).encode())
+        finally:
+            os._exit(0)
+    os.close(write)
+    brick = int(os.read(read, 32))
+    os.waitpid(worker, 0)
+    deadline = time.monotonic() + 10
+    while _alive(brick) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not _alive(brick)
+
+
+def test_closing_the_zygote_ends_it_and_its_bricks(tmp_path):
+    z = BrickZygote()
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    a, b = socket.socketpair()
+    with open(scratch / "console.log", "wb") as console:
+        child = z.spawn(scratch, b.fileno(), -1, console.fileno())
+    assert _alive(child.pid) and _alive(z.pid)
+    z.close()
+    assert z.popen.returncode is not None
+    assert child.wait(timeout=5) == -signal.SIGKILL  # it never got a welcome: the zygote killed it
+    with pytest.raises(ZygoteGone):
+        z.spawn(scratch, b.fileno(), -1, 1)
+
+
+def test_a_class_run_starts_python_once_for_its_bricks(tmp_path):
+    """The point of the zygote: the grader's bricks are forked, not started (one zygote per class run)."""
+    from ev3sim2d.grading.grader import grade
+    from ev3sim2d.grading.lesson import load_lesson
+    from ev3sim2d.grading.submission import find_submissions
+
+    lesson = load_lesson("line-follow")
+    solution = Path(lesson.folder) / "solution.py"
+    started = []
+    import ev3sim2d.brick_process as brick_process
+
+    real_popen = brick_process.subprocess.Popen
+
+    def counting_popen(argv, **options):
+        started.append(argv)
+        return real_popen(argv, **options)
+
+    brick_process.subprocess.Popen = counting_popen
+    try:
+        result = grade(lesson, find_submissions([solution]), jobs=2).results[0]
+    finally:
+        brick_process.subprocess.Popen = real_popen
+    assert result.score == result.max_score
+    assert len(started) == 1 and "zygote" in started[0]  # three bricks, one Python started
