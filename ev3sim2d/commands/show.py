@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..render.frame import draw_world_picture, save_png
 from ..simulation import Simulation, StartBlocked
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import load_robot
@@ -39,6 +38,8 @@ def main(args) -> int:
         return fail(str(err))
     except (StartBlocked, FileNotFoundError) as err:
         return fail(str(err))
+    from ..render.frame import draw_world_picture, save_png  # (OpenCV: only when a picture is drawn)
+
     try:
         save_png(draw_world_picture(trace, args.width), args.png)
     except OSError as err:

@@ -17,6 +17,7 @@ from ..trace import Trace
 from ..world.maze_file import parse_maze
 from . import palette
 from .layout import FrameLayout
+from .outputs import DEFAULT_SIZE  # (the picture options' module, which imports no renderer)
 from .panel import Panel
 from .robot_layer import (
     TRAIL_RECENT_S,
@@ -34,7 +35,6 @@ from .timeline import Timeline
 from .walls import Walls
 from .world_layer import draw_world
 
-DEFAULT_SIZE = (1280, 720)
 CAPTION_MIN_S = 1.5  # speech captions stay at least this long in the video
 
 

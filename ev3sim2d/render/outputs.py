@@ -1,4 +1,7 @@
-"""The picture options that `run` and `render` share (--video, --frames, --fps, ...), and writing them."""
+"""The picture options that `run` and `render` share (--video, --frames, --fps, ...), and writing them.
+
+OpenCV and PyAV are imported only to write pictures: every command's parser is built from this
+module, and a class run forks workers from a process that should not carry them."""
 
 from __future__ import annotations
 
@@ -6,8 +9,8 @@ import argparse
 import re
 
 from ..trace import Trace
-from .frame import DEFAULT_SIZE, write_png
-from .video import VideoOptions, write_frames, write_video
+
+DEFAULT_SIZE = (1280, 720)  # (render/frame.py's default too)
 
 MAX_FPS = 120.0
 
@@ -87,6 +90,9 @@ def add_picture_arguments(parser: argparse.ArgumentParser) -> None:
 
 def write_pictures(trace: Trace, args: argparse.Namespace) -> None:
     """Whatever pictures the arguments ask for: --png, --video, --frames."""
+    from .frame import write_png
+    from .video import VideoOptions, write_frames, write_video
+
     options = VideoOptions(fps=args.fps, speed=args.speed, size=args.size, audio=args.audio)
     if getattr(args, "png", None):
         write_png(trace, args.png, args.size)
