@@ -120,10 +120,10 @@ class BrickPort:
     def run_ops(self, world_us: int) -> None:
         """Apply queued ops until a tick marker ahead of the world (kept in self.marker) or the queue's end."""
         queue = self.queue
+        if not queue or self.marker is not None or self.end is not None or self.gone is not None:
+            return
         direct = self._direct
         while queue:
-            if self.marker is not None or self.end is not None or self.gone is not None:
-                return
             op = queue.popleft()
             if type(op) is not list or not op:
                 raise ProtocolError("an op must be a non-empty JSON array")
@@ -147,6 +147,7 @@ class BrickPort:
                 self.time_us = self.declared = tick
                 if tick > world_us:
                     self.marker = tick
+                    return
             elif kind == "p":
                 self._print(op)
             elif kind == "@":
@@ -167,6 +168,7 @@ class BrickPort:
                 self.send(["reply", answers, self.values()])
             elif kind == "end":
                 self._finish(op[1])
+                return
             else:
                 raise ProtocolError(f"unknown op {kind!r}")
 

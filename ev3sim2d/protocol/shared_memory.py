@@ -89,6 +89,26 @@ class SharedChannel(Channel):
             raise ConnectionGone("the connection is gone")
         words, memory = self._words, self.memory
         produced_at, consumed_at, asleep_at = self._out
+        size, written = len(data), self._written
+        start = written % RING_BYTES
+        if start + size <= RING_BYTES and 0 <= written - words[consumed_at] <= RING_BYTES - size:
+            # the usual case, a message with room for it before the ring's end: one copy
+            at = self._out_data + start
+            memory[at : at + size] = data
+            self._written = written + size
+            words[produced_at] = written + size
+        else:
+            self._send_wrapping(data)
+        if not self._defer:
+            self._wake(asleep_at)
+        elif not self._wake_deferred:
+            self._wake_deferred = True
+            defer_wake(self)
+
+    def _send_wrapping(self, data: bytes) -> None:
+        """send_bytes for a message that wraps round the ring's end or must wait for room."""
+        words, memory = self._words, self.memory
+        produced_at, consumed_at, asleep_at = self._out
         view = memoryview(data)
         deadline = None
         while view:
@@ -110,11 +130,6 @@ class SharedChannel(Channel):
             self._written += n
             words[produced_at] = self._written
             view = view[n:]
-        if not self._defer:
-            self._wake(asleep_at)
-        elif not self._wake_deferred:
-            self._wake_deferred = True
-            defer_wake(self)
 
     def wake_now(self) -> None:
         """The deferred wake-up (see stream.flush_wakes): the reader may read what was sent."""
