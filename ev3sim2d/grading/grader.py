@@ -17,6 +17,7 @@ import gc
 import json
 import os
 import secrets
+import select
 import shutil
 import socket
 import tempfile
@@ -75,6 +76,20 @@ class CoreShare:
         if not self.cores:
             return None
         return min(self.cores, key=lambda core: (taken.count(core), core))
+
+
+def _wait_for_one(pids: list[int], timeout_s: float) -> None:
+    """Sleep until one of these processes ends, or timeout_s: a free slot is filled at once."""
+    fds: list[int] = []
+    try:
+        for pid in pids:
+            fds.append(os.pidfd_open(pid))
+        select.select(fds, [], [], timeout_s)
+    except (AttributeError, OSError):  # no pidfds (not Linux >= 5.3): look again after a while
+        time.sleep(timeout_s)
+    finally:
+        for fd in fds:
+            os.close(fd)
 
 
 def _start_zygote():
@@ -256,7 +271,7 @@ def grade(
                 job = queue.pop()
                 job.cpu = cores.least_used([w.job.cpu for w in running])
                 running.append(start_job(job, lesson, use_fork, zygote))
-            time.sleep(POLL_S)
+            _wait_for_one([w.pid for w in running], POLL_S)
             now = time.monotonic()
             for worker in list(running):
                 if not worker.poll():
