@@ -37,7 +37,6 @@ WRITE_US = 3_000  # writing one attribute (a speed, a command, a mode)
 FIND_US = 2_000  # looking a device up when it is constructed
 
 HEARTBEAT_S = 0.5  # real seconds between two messages at most, while the clock moves
-_UNKNOWN = object()
 _perf_counter = time.perf_counter  # the real clock (the program's is virtual)
 
 
@@ -90,7 +89,8 @@ class BrickLink:
         self.keys: dict[tuple[str, str, str], int] = {}
         self.key_device: list[int] = []  # key -> device number
         self.devices: dict[tuple[str, str], int] = {}
-        self.rules: dict[int, list | None] = {}  # key -> write rule (None: ask every time)
+        self.checked: dict[tuple[str, str, str], tuple] = {}  # (class, device, attribute) -> (key,
+        # device number, rule, time-stamped) for the attributes whose writes are checked here
         self.position: dict[int, int] = {}  # key -> its place in a snapshot's values
         self.fixed: dict[int, tuple] = {}  # key -> (value, the device's writes then; -1: for ever)
         self.writes: list[int] = []  # device -> how many times the program wrote to it
@@ -243,6 +243,16 @@ class BrickLink:
         self._task()
         if not isinstance(value, str):
             value = bytes(value).decode("latin-1")
+        known = self.checked.get((class_name, device_name, attribute))
+        if known is not None:  # the hot path: an attribute whose rule is known
+            key, device, rule, stamped = known
+            self.writes[device] += 1
+            self.written.add(device)
+            self.stale.add(device)
+            check_write(rule, value)
+            self.ops.append(["w", key, value, self.scheduler.now_us] if stamped else ["w", key, value])
+            self.scheduler.spend(WRITE_US)
+            return
         key = self.keys.get((class_name, device_name, attribute))
         if key is None:
             key = self._key(class_name, device_name, attribute)
@@ -250,17 +260,12 @@ class BrickLink:
         self.writes[device] += 1
         self.written.add(device)
         self.stale.add(device)
-        rule = self.rules.get(key, _UNKNOWN)
-        if rule is _UNKNOWN or rule is None:
-            error, self.rules[key] = self.ask([["W", key, value]])[0]
-            if error is not None:
-                raise OSError(error[0], error[1])
-        else:
-            check_write(rule, value)
-            if class_name == "leds":
-                self.ops.append(["w", key, value, self.scheduler.now_us])
-            else:
-                self.ops.append(["w", key, value])
+        # an attribute written for the first time, or one whose writes the simulator checks each time
+        error, rule = self.ask([["W", key, value]])[0]
+        if rule is not None:
+            self.checked[(class_name, device_name, attribute)] = (key, device, rule, class_name == "leds")
+        if error is not None:
+            raise OSError(error[0], error[1])
         self.scheduler.spend(WRITE_US)
 
     def poll(self, class_name: str, device_name: str, attribute: str, timeout_ms) -> None:
