@@ -110,13 +110,11 @@ class Channel:
             left = None if deadline is None else deadline - _perf_counter()
             if left is not None and left <= 0:
                 return None
+            flush_wakes()
             if left is not None:
-                flush_wakes()
                 ready, _, _ = select.select([self.sock], [], [], left)
                 if not ready:
                     return None
-            if left is None:
-                flush_wakes()
             self._fill(0)
             message = self._take()
             if message is not None:
