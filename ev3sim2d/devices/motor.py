@@ -1,14 +1,23 @@
 """EV3 Large and Medium motors, as the ev3dev tacho-motor driver shows them.
 
-Motors have infinite acceleration: a wheel turns at speed_sp at once and stops
-at once on brake or hold; coast lets it roll out with a short time constant.
+Motors have infinite acceleration unless the program sets ramp_up_sp /
+ramp_down_sp: a wheel turns at speed_sp at once and stops at once on brake or
+hold; coast lets it roll out with a short time constant.  With ramps the speed
+changes linearly (ramp_up_sp ms from 0 to max_speed, ramp_down_sp ms back), as
+the driver's ramp does, and `state` says `ramping` meanwhile.
 Each tick the motor *plans* how far its shaft should turn; the robot moves,
 and the motor is told how far the shaft really turned (`measured`), which is
 what the encoder counts.  A shaft that turns much less than planned for a
-while (a robot pushing a wall) is `stalled`.
+while (a robot pushing a wall, or a run at speed 0) is `stalled`; while it
+lags, the speed PID's error adds up and the duty cycle rises to 100 %, where
+the motor is `overloaded`.
 
 Runs end exactly: run-to-*-pos lands on position_sp and run-timed turns for
 exactly time_sp, even when that falls between two ticks.
+
+Driver behaviour mirrored here is from github.com/ev3dev/lego-linux-drivers:
+motors/tacho_motor_class.c (commands, ramps, PID attributes), ev3/legoev3_motor.c
+(stall, run to position, state), motors/ev3_motor_defs.c (PID defaults).
 """
 
 from __future__ import annotations
@@ -17,17 +26,20 @@ import math
 
 from .device import Device, invalid, parse_int
 
-# ev3dev tacho-motor figures for the EV3 motors (deg/s at full power, counts per rotation)
+# ev3dev tacho-motor figures for the EV3 motors (driver name, max_speed in deg/s, hold_pid/Kp)
 KINDS = {
-    "large": ("lego-ev3-l-motor", 1050),
-    "medium": ("lego-ev3-m-motor", 1560),
+    "large": ("lego-ev3-l-motor", 1050, 80000),
+    "medium": ("lego-ev3-m-motor", 1560, 160000),
 }
+# motors/ev3_motor_defs.c: speed_pid_k {1000, 60, 0} for both, position_pid_k {Kp, 0, 0}
+SPEED_PID = {"speed_pid/Kp": 1000, "speed_pid/Ki": 60, "speed_pid/Kd": 0}
 COMMANDS = ("run-forever", "run-to-abs-pos", "run-to-rel-pos", "run-timed", "run-direct", "stop", "reset")
 STOP_ACTIONS = ("coast", "brake", "hold")
 
 COAST_TIME_CONSTANT_S = 0.08  # how quickly a coasting wheel rolls out
 STALL_WINDOW_S = 0.1  # how long a shaft must lag before the motor reports stalled
 STALL_RATIO = 0.25  # ... turning less than this share of the planned travel
+PID_SCALE = 10000  # tm_pid_update: duty = (Kp*error + Ki*integral + Kd*delta) / 10000
 
 # state bits, also used by the trace
 RUNNING, RAMPING, HOLDING, OVERLOADED, STALLED = 1, 2, 4, 8, 16
@@ -51,10 +63,11 @@ class TachoMotor(Device):
     name_prefix = "motor"
 
     def __init__(self, address: str, kind: str) -> None:
-        driver_name, max_speed = KINDS[kind]
+        driver_name, max_speed, hold_kp = KINDS[kind]
         super().__init__(address, driver_name)
         self.kind = kind
         self.max_speed = max_speed
+        self.hold_kp = hold_kp
         self.count_per_rot = 360
         self._reset()
         r, w = self.readers, self.writers
@@ -85,7 +98,7 @@ class TachoMotor(Device):
             "speed_pid/Kd",
         ):
             r[pid] = lambda pid=pid: str(self.pid[pid])
-            w[pid] = lambda value, pid=pid: self.pid.__setitem__(pid, parse_int(value))
+            w[pid] = lambda value, pid=pid: self.pid.__setitem__(pid, self._gain(value))
         w.update(
             command=self._command,
             polarity=self._set_polarity,
@@ -112,7 +125,7 @@ class TachoMotor(Device):
             ramp_up_sp=["int", 0, 60000],
             ramp_down_sp=["int", 0, 60000],
             position=["int", None, None],
-            **{pid: ["int", None, None] for pid in self.pid},
+            **{pid: ["int", 0, None] for pid in self.pid},
         )
 
     # ------------------------------------------------------------ attributes
@@ -128,21 +141,21 @@ class TachoMotor(Device):
         self.duty_cycle_sp = 0
         self.ramp_up_sp = 0
         self.ramp_down_sp = 0
-        self.pid = {
-            "hold_pid/Kp": 1000,
-            "hold_pid/Ki": 0,
-            "hold_pid/Kd": 0,
-            "speed_pid/Kp": 1000,
-            "speed_pid/Ki": 60,
-            "speed_pid/Kd": 0,
-        }
-        self.mode = "stopped"  # stopped, run, to_pos, timed, direct, coast
+        self.pid = {"hold_pid/Kp": self.hold_kp, "hold_pid/Ki": 0, "hold_pid/Kd": 0, **SPEED_PID}
+        # stopped, run, to_pos, timed, direct, coast; or ramped (self.ramp_kind says which run)
+        self.mode = "stopped"
         self.state_bits = 0
         self.speed_dps = 0.0  # measured shaft speed, motor frame
+        self.planned_dps = 0.0  # the speed the motor was driven at in the last tick, motor frame
         self.target_shaft = 0.0
+        self.target_position = 0  # run-to-*-pos: the target in counts, as the driver compares it
         self.run_left_s = 0.0
         self.coast_dps = 0.0
+        self.ramp_kind = ""  # while ramped: run, timed, to_pos or stop
+        self.ramp_dps = 0.0  # while ramped: the ramp's speed now, motor frame
         self._lag_s = 0.0
+        self._error_sum = 0.0  # the speed PID's integral while the shaft lags (counts/s, summed per tick)
+        self._lag_duty = 0.0  # the duty cycle the speed PID drives a lagging shaft with, 0..100
 
     @property
     def position(self) -> int:
@@ -154,7 +167,14 @@ class TachoMotor(Device):
 
     @property
     def duty_cycle(self) -> int:
-        return int(round(100 * self.speed_dps * self.sign / self.max_speed)) if self.mode != "stopped" else 0
+        mode = self.mode
+        if mode == "stopped" or mode == "coast":
+            return 0
+        if mode == "direct":
+            return self.duty_cycle_sp
+        dps = self.planned_dps
+        duty = self._lag_duty or 100 * abs(dps) / self.max_speed
+        return int(round(math.copysign(duty, dps * self.sign))) if dps else 0
 
     def _set_position(self, value: str) -> None:
         self.offset = parse_int(value) - self.sign * self.shaft_deg
@@ -197,7 +217,14 @@ class TachoMotor(Device):
         ms = parse_int(value)
         if not 0 <= ms <= 60000:
             raise invalid(value)
-        return ms  # accepted; motors here reach their speed at once
+        return ms
+
+    @staticmethod
+    def _gain(value: str) -> int:
+        k = parse_int(value)
+        if k < 0:  # tacho_motor_class.c, PID_ATTR_FUNCS: "if (k < 0) return -EINVAL;"
+            raise invalid(value)
+        return k
 
     # -------------------------------------------------------------- commands
     def _command(self, value: str) -> None:
@@ -205,26 +232,53 @@ class TachoMotor(Device):
         if command not in COMMANDS:
             raise invalid(value)
         self._lag_s = 0.0
+        self._error_sum = 0.0
+        self._lag_duty = 0.0
         if command == "run-forever":
-            self.mode = "run"
+            mode = "run"
         elif command == "run-timed":
-            self.mode = "timed"
+            mode = "timed"
             self.run_left_s = self.time_sp / 1000.0
         elif command == "run-direct":
-            self.mode = "direct"
+            mode = "direct"
         elif command in ("run-to-abs-pos", "run-to-rel-pos"):
+            if command == "run-to-rel-pos" and self.position_sp == 0:
+                # tacho_motor_class.c tm_send_command: "If the relative position setpoint is 0,
+                # then don't try to run, just stop."
+                self._stop()
+                return
             target = self.position_sp + (self.position if command == "run-to-rel-pos" else 0)
+            self.target_position = target
             self.target_shaft = (target - self.offset) * self.sign
-            self.mode = "to_pos"
+            mode = "to_pos"
         elif command == "stop":
             self._stop()
             return
-        elif command == "reset":
+        else:  # reset
             self._reset()
             return
+        if mode != "direct" and (self.ramp_up_sp or self.ramp_down_sp):
+            self._start_ramp(mode)
+            return
+        self.mode = mode
         self.state_bits = RUNNING
 
+    def _start_ramp(self, kind: str) -> None:
+        """Ramp from the speed now (the ramp's, or the measured one) toward the run's speed."""
+        if self.mode != "ramped":
+            self.ramp_dps = self.speed_dps if self.mode != "stopped" else 0.0
+        self.mode = "ramped"
+        self.ramp_kind = kind
+        self.state_bits = RUNNING | RAMPING
+
     def _stop(self) -> None:
+        if self.ramp_down_sp and self.mode in ("run", "timed", "to_pos", "ramped"):
+            # a stop with ramp_down_sp ramps down to 0, then applies stop_action (tacho_motor_class.c)
+            self._start_ramp("stop")
+            return
+        self._stop_now()
+
+    def _stop_now(self) -> None:
         if self.stop_action == "coast" and self.mode not in ("stopped", "coast"):
             self.coast_dps = self.speed_dps
             self.mode = "coast"
@@ -252,14 +306,59 @@ class TachoMotor(Device):
             return self.sign * self.speed_sp * min(dt, self.run_left_s)
         if mode == "direct":
             return self.sign * self.duty_cycle_sp / 100.0 * self.max_speed * dt
+        if mode == "ramped":
+            return self._ramp_plan(dt)[1]
         # coast: the shaft rolls out
         return self.coast_dps * COAST_TIME_CONSTANT_S * (1.0 - math.exp(-dt / COAST_TIME_CONSTANT_S))
 
+    def _ramp_plan(self, dt: float) -> tuple[float, float, bool]:
+        """A ramped run's next tick: (speed at its end, degrees turned, still ramping).
+
+        The speed moves linearly toward the run's speed: ramp_up_sp ms for 0 to max_speed when its
+        size grows, ramp_down_sp ms when it shrinks, through 0 first when the direction changes
+        (tacho_motor_class.c, tacho_motor_class_start_motor_ramp).  A run to a position with
+        ramp_down_sp slows down to land on it (legoev3_motor.c, update_position)."""
+        kind = self.ramp_kind
+        v0 = self.ramp_dps
+        remaining = 0.0
+        if kind == "stop":
+            goal = 0.0
+        elif kind == "to_pos":
+            remaining = self.target_shaft - self.shaft_deg
+            goal = math.copysign(abs(self.speed_sp), remaining)
+        else:
+            goal = float(self.sign * self.speed_sp)
+        leg = 0.0 if v0 * goal < 0 else goal
+        ms = self.ramp_up_sp if abs(leg) > abs(v0) else self.ramp_down_sp
+        need = abs(leg - v0) * ms / (1000.0 * self.max_speed)  # seconds to the leg's end
+        if need > dt:
+            v1 = v0 + math.copysign(dt * 1000.0 * self.max_speed / ms, leg - v0)
+            distance = (v0 + v1) / 2 * dt
+        else:
+            v1 = leg
+            distance = (v0 + leg) / 2 * need + leg * (dt - need)
+        ramping = v1 != goal
+        if kind == "to_pos":
+            if self.ramp_down_sp and v1 * remaining > 0:
+                cap = math.sqrt(2000.0 * self.max_speed / self.ramp_down_sp * abs(remaining))
+                if abs(v1) > cap:
+                    v1 = math.copysign(cap, remaining)
+                    distance = v1 * dt
+                    ramping = True
+            if abs(distance) >= abs(remaining) and distance * remaining >= 0:
+                distance = remaining
+        elif kind == "timed" and self.run_left_s < dt:
+            distance *= max(self.run_left_s, 0.0) / dt
+        return v1, distance, ramping
+
     def measured(self, planned: float, turned: float, dt: float) -> None:
         """The shaft really turned `turned` degrees of the `planned` ones during the tick."""
+        mode = self.mode
+        if mode == "ramped":
+            ramp_dps, _, ramping = self._ramp_plan(dt)  # before the shaft moves, as plan() saw it
         self.shaft_deg += turned
         self.speed_dps = turned / dt
-        mode = self.mode
+        self.planned_dps = planned / dt
         if mode == "stopped":
             return
         if mode == "coast":
@@ -267,24 +366,58 @@ class TachoMotor(Device):
             if abs(self.coast_dps) < 5.0:
                 self.mode = "stopped"
             return
-        if mode == "to_pos" and abs(self.target_shaft - self.shaft_deg) < 1e-6:
-            self._finish_run()
+        ramp_bit = 0
+        if mode == "ramped":
+            self.ramp_dps = ramp_dps
+            mode = self.ramp_kind
+            if mode == "stop" and ramp_dps == 0.0:
+                self._stop_now()
+                return
+            if ramping:
+                ramp_bit = RAMPING
+            elif mode != "to_pos" or not self.ramp_down_sp:
+                self.mode = mode  # at the run's speed: no more ramping work each tick
+        if mode == "to_pos" and (
+            abs(self.target_shaft - self.shaft_deg) < 1e-6
+            or (self.speed_sp == 0 and self.position == self.target_position)
+        ):
+            # the driver stops at once when the position reaches position_sp (update_position)
+            self._lag_s = 0.0
+            self._stop_now()
             return
         if mode == "timed":
             self.run_left_s -= dt
             if self.run_left_s <= 1e-9:
-                self._finish_run()
+                self._lag_s = 0.0
+                self._stop()  # ramps down first if ramp_down_sp is set (run_timed_work)
                 return
-        # stall: a shaft that keeps turning much less than planned
-        if abs(planned) > 1e-9 and abs(turned) < STALL_RATIO * abs(planned):
+        # stall: a shaft that keeps turning much less than planned (or not at all, at speed 0);
+        # the driver reports stalled after TACHO_MOTOR_STALLED_MS of no motion (update_stall)
+        if abs(turned) <= STALL_RATIO * abs(planned) + 1e-9:
             self._lag_s += dt
+            bits = 0 if mode == "direct" else self._push(abs(planned - turned) / dt)
         else:
-            self._lag_s = 0.0
+            if self._lag_s:  # the PID's pushing ends with the lag
+                self._lag_s = self._error_sum = self._lag_duty = 0.0
+            bits = 0
         if self._lag_s >= STALL_WINDOW_S - 1e-9:
-            self.state_bits = RUNNING | STALLED
-        else:
-            self.state_bits = RUNNING
+            bits |= STALLED
+        self.state_bits = RUNNING | ramp_bit | bits
 
-    def _finish_run(self) -> None:
-        self._lag_s = 0.0
-        self._stop()
+    def _push(self, error: float) -> int:
+        """The speed PID on a lagging shaft: its error (counts/s) adds up each tick and the duty cycle
+        rises; past 100 % it is clamped and the motor is overloaded (tacho_motor_helper.c,
+        tm_pid_update, with its anti-windup).  Kd (0 by default) is left out."""
+        if not error:  # a speed setpoint of 0 drives with duty 0 (legoev3_motor_tacho_cb)
+            self._lag_duty = 0.0
+            return 0
+        pid = self.pid
+        self._error_sum += error
+        duty = 100.0 * abs(self.planned_dps) / self.max_speed
+        duty += (pid["speed_pid/Kp"] * error + pid["speed_pid/Ki"] * self._error_sum) / PID_SCALE
+        if duty > 100.0:
+            self._error_sum -= error
+            self._lag_duty = 100.0
+            return OVERLOADED
+        self._lag_duty = duty
+        return 0

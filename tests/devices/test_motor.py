@@ -98,9 +98,11 @@ def test_a_blocked_shaft_reports_stalled():
     m.write("command", "run-forever")
     for _ in range(20):
         m.measured(m.plan(DT), 0.0, DT)
-    assert m.read("state") == "running stalled"
+    assert m.read("state") == "running overloaded stalled"  # the speed PID pushes to 100 %
+    assert m.read("duty_cycle") == "100"
     turn_freely(m, 1)
     assert m.read("state") == "running"
+    assert m.read("duty_cycle") == "48"
 
 
 def test_inversed_polarity_turns_the_other_way_and_counts_in_its_own_frame():
@@ -139,3 +141,43 @@ def test_unknown_and_read_only_attributes():
     with pytest.raises(OSError) as err:
         m.write("max_speed", "5")
     assert err.value.errno == errno.EACCES
+
+
+def test_a_ramp_changes_speed_linearly_and_passes_through_zero_when_reversing():
+    m = TachoMotor("ev3-ports:outB", "large")
+    m.write("ramp_up_sp", "1000")  # 1050 deg/s per second up
+    m.write("ramp_down_sp", "500")  # 2100 deg/s per second down
+    m.write("speed_sp", "525")
+    m.write("command", "run-forever")
+    turn_freely(m, 25)
+    assert m.read("speed") == "257" and m.read("state") == "running ramping"  # the last tick's mean
+    turn_freely(m, 30)
+    assert m.read("speed") == "525" and m.read("state") == "running"
+    assert m.mode == "run"  # done ramping: no more ramp work each tick
+    m.write("speed_sp", "-525")
+    m.write("command", "run-forever")
+    turn_freely(m, 30)  # 0.25 s down to 0, then 0.05 s up the other way at the ramp-up rate
+    assert -60 < int(m.read("speed")) < -40 and m.read("state") == "running ramping"
+    turn_freely(m, 60)
+    assert m.read("speed") == "-525" and m.read("state") == "running"
+
+
+def test_a_ramped_run_to_position_lands_exactly_and_a_timed_run_ramps_down_after_time_sp():
+    m = TachoMotor("ev3-ports:outB", "large")
+    m.write("ramp_up_sp", "1000")
+    m.write("ramp_down_sp", "1000")
+    m.write("speed_sp", "700")
+    m.write("position_sp", "1000")
+    m.write("stop_action", "hold")
+    m.write("command", "run-to-abs-pos")
+    turn_freely(m, 400)
+    assert m.read("position") == "1000" and m.read("state") == "holding"
+    m.write("speed_sp", "525")
+    m.write("time_sp", "1000")
+    m.write("command", "run-timed")
+    turn_freely(m, 100)
+    assert m.read("state") == "running ramping"  # time_sp is over: the ramp down to 0 starts
+    turn_freely(m, 60)
+    assert m.read("state") == "holding" and m.read("speed") == "0"
+    # 0.5 s up (131 deg), 0.5 s at 525 (262 deg), 0.5 s down (131 deg)
+    assert abs(int(m.read("position")) - 1000 - 525) <= 3
