@@ -1,7 +1,10 @@
 """EV3 infrared sensor: proximity to the nearest wall or robot ahead (0 to 100; 100 = about 70 cm or more).
 
 There are no beacons or remotes in the world yet: seek mode reports no
-beacon (-128 distance) and remote mode no buttons.
+beacon (-128 distance) and remote mode no buttons (IR-REM-A: 384, the driver's
+"no buttons are pressed" value).  Modes, value counts and data formats as the
+driver gives them (lego-linux-drivers sensors/ev3_uart_sensor_defs.c,
+LEGO_EV3_INFRARED): s8 but for IR-REM-A (s16) and IR-CAL (s32).
 """
 
 from __future__ import annotations
@@ -15,12 +18,12 @@ DEFAULT_CONE_DEG = 30.0
 class InfraredSensor(LegoSensor):
     DRIVER = "lego-ev3-ir"
     MODES = {
-        "IR-PROX": Mode(1, 0, "pct", "u8", 0, 100),
+        "IR-PROX": Mode(1, 0, "pct", "s8", 0, 100),
         "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 127, noisy=False),
-        "IR-REMOTE": Mode(4, 0, "btn", "u8", 0, 255, noisy=False),
-        "IR-REM-A": Mode(1, 0, "", "u16", 0, 65535, noisy=False),
-        "IR-S-ALT": Mode(4, 0, "", "u8", 0, 255, noisy=False),
-        "IR-CAL": Mode(2, 0, "", "u16", 0, 65535, noisy=False),
+        "IR-REMOTE": Mode(4, 0, "btn", "s8", 0, 11, noisy=False),
+        "IR-REM-A": Mode(1, 0, "", "s16", 0, 32767, noisy=False),
+        "IR-S-ALT": Mode(4, 0, "pct", "s8", 0, 100, noisy=False),
+        "IR-CAL": Mode(2, 0, "", "s32", 0, 1023, noisy=False),
     }
 
     def __init__(self, address, spec, surroundings) -> None:
@@ -33,4 +36,6 @@ class InfraredSensor(LegoSensor):
             return (100.0 * self.nearest_in_cone(self.cone_deg, self.full_cm) / self.full_cm,)
         if mode == "IR-SEEK":
             return (0, -128) * 4
+        if mode == "IR-REM-A":
+            return (384,)
         return (0,) * self.MODES[mode].num_values

@@ -8,7 +8,9 @@ Each kind of sensor is one subclass that lists its modes and measures them.
 
 from __future__ import annotations
 
+import errno
 import math
+import os
 import struct
 from dataclasses import dataclass
 from typing import Protocol
@@ -27,6 +29,9 @@ class Mode:
     low: float = -128
     high: float = 127
     noisy: bool = True  # False for values that name something (a colour, a button): noise would garble them
+    # the driver's raw_min, raw_max, si_min, si_max when bin_data holds unscaled readings that value<N> scales
+    # (the NXT analog sensors: millivolts); None when bin_data holds the values themselves (the EV3 sensors)
+    raw: tuple[int, int, int, int] | None = None
 
 
 class Surroundings(Protocol):
@@ -93,12 +98,17 @@ class LegoSensor(Device):
         if mode != self.mode:
             self.mode = mode
             self.mode_changed()
+        self.mode_selected()
 
     def _set_command(self, value: str) -> None:
         raise invalid(value)  # the EV3 sensors take no commands
 
     def mode_changed(self) -> None:
         """Hook for sensors whose state changes with the mode (the gyro resets)."""
+
+    def mode_selected(self) -> None:
+        """Hook called on every write of `mode`, the same mode or another: the driver sends the sensor its
+        SELECT message each time (the ultrasonic sensor's single-measurement modes measure then)."""
 
     def values(self) -> tuple[int, ...]:
         """The current mode's values for this tick, as the driver gives them (scaled integers)."""
@@ -122,11 +132,20 @@ class LegoSensor(Device):
 
     def _value(self, n: int) -> str:
         values = self.values()
-        return str(values[n]) if n < len(values) else "0"
+        if n < len(values):
+            return str(values[n])
+        # lego_sensor_class.c value_show: index >= num_values -> -ENXIO ("No such device or address")
+        # (a real brick's read of the file raises OSError: [Errno 6] No such device or address)
+        raise OSError(errno.ENXIO, os.strerror(errno.ENXIO))
 
     def _bin_data(self) -> str:
-        fmt = _FORMATS[self.MODES[self.mode].data_format]
-        data = b"".join(struct.pack(fmt if fmt.startswith(">") else "<" + fmt, v) for v in self.values())
+        mode = self.MODES[self.mode]
+        fmt = _FORMATS[mode.data_format]
+        values = self.values()
+        if mode.raw is not None:  # unscaled readings: value = (raw - raw_min) * si span / raw span + si_min
+            raw_min, raw_max, si_min, si_max = mode.raw
+            values = [raw_min + round((v - si_min) * (raw_max - raw_min) / (si_max - si_min)) for v in values]
+        data = b"".join(struct.pack(fmt if fmt.startswith(">") else "<" + fmt, v) for v in values)
         return data.decode("latin-1")
 
     # ------------------------------------------------------------- measuring
