@@ -59,6 +59,9 @@ class Robot:
             self.motors[m.port] = TachoMotor(f"ev3-ports:{m.port}", m.kind)
         self.left = self.motors[spec.left_wheel.port]
         self.right = self.motors[spec.right_wheel.port]
+        # a motor mounted the other way round turns its wheel backwards: -1
+        self.left_mount = -1.0 if spec.left_wheel.reversed else 1.0
+        self.right_mount = -1.0 if spec.right_wheel.reversed else 1.0
         self.other_motors = [m for m in self.motors.values() if m is not self.left and m is not self.right]
 
         self.sensors = {}
@@ -97,7 +100,8 @@ class Robot:
         left = self.left.plan(dt)
         right = self.right.plan(dt)
         self._planned = (left, right)
-        left_cm, right_cm = left * self.cm_per_deg, right * self.cm_per_deg
+        left_cm = left * self.left_mount * self.cm_per_deg
+        right_cm = right * self.right_mount * self.cm_per_deg
         turn = (right_cm - left_cm) / self.track_cm
         # velocity along the mid-step heading: arcs come out right to second order
         self.body.drive((left_cm + right_cm) / 2 / dt, self.heading_rad + turn / 2, turn / dt)
@@ -111,8 +115,8 @@ class Robot:
         forward = dx * math.cos(mid) + dy * math.sin(mid)
         half_turn = dh * self.track_cm / 2
         planned_left, planned_right = self._planned
-        self.left.measured(planned_left, (forward - half_turn) / self.cm_per_deg, dt)
-        self.right.measured(planned_right, (forward + half_turn) / self.cm_per_deg, dt)
+        self.left.measured(planned_left, self.left_mount * (forward - half_turn) / self.cm_per_deg, dt)
+        self.right.measured(planned_right, self.right_mount * (forward + half_turn) / self.cm_per_deg, dt)
         for motor in self.other_motors:
             if motor.mode != "stopped" or motor.speed_dps:
                 turned = motor.plan(dt)

@@ -27,6 +27,7 @@ MOTOR_KINDS = ("large", "medium")
 SENSOR_KINDS = ("touch", "gyro", "color", "ultrasonic", "infrared", "nxt-light", "nxt-sound")
 FACINGS = ("forward", "down")
 WHEELS = ("left", "right")
+MOUNTINGS = ("normal", "reversed")
 
 SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
     "touch": {},
@@ -61,11 +62,16 @@ DEFAULT_ROBOT_COLOR = (230, 170, 30)
 
 @dataclass(frozen=True)
 class MotorSpec:
-    """A motor on an output port; `wheel` says which driving wheel it turns, if any."""
+    """A motor on an output port; `wheel` says which driving wheel it turns, if any.
+
+    `reversed`: the motor is mounted the other way round, so with normal polarity a positive
+    speed turns its wheel backwards (a program for such a robot sets `polarity = 'inversed'`).
+    """
 
     port: str
     kind: str
     wheel: str | None = None
+    reversed: bool = False
 
 
 @dataclass(frozen=True)
@@ -284,14 +290,17 @@ def _choice(fields: Fields, name: str, choices: tuple[str, ...], default: Any = 
 
 
 def _motor(node: Node) -> tuple[MotorSpec, Node]:
-    fields = node.as_fields("motor", ("port", "kind", "wheel"), "- {port: B, kind: large, wheel: left}")
+    fields = node.as_fields(
+        "motor", ("port", "kind", "wheel", "mounted"), "- {port: B, kind: large, wheel: left}"
+    )
     port = _port(fields.require("port", "port: B"), MOTOR_PORTS, "motor")
     kind = _choice(fields, "kind", MOTOR_KINDS, default="large")
     wheel_node = fields.get("wheel")
     wheel = None
     if wheel_node is not None and not wheel_node.is_null and wheel_node.text.strip().lower() != "none":
         wheel = _choice(fields, "wheel", WHEELS)
-    return MotorSpec(port, kind, wheel), node
+    mounted = _choice(fields, "mounted", MOUNTINGS, default="normal")
+    return MotorSpec(port, kind, wheel, mounted == "reversed"), node
 
 
 def _sensor(node: Node) -> SensorSpec:

@@ -16,6 +16,8 @@ import errno
 import pytest
 
 from ev3sim2d.devices.motor import TachoMotor
+from ev3sim2d.world.robot_spec import default_robot, parse_robot
+from ev3sim2d.world.source_error import WorldFileError
 from tests.inline_world import arena
 
 DT = 0.01
@@ -225,3 +227,54 @@ def test_a_negative_pid_gain_is_einval(pid):
     assert err.value.errno == errno.EINVAL
     m.write(pid, "0")
     assert m.read(pid) == "0"
+
+
+# -- 5. motors mounted the other way round ---------------------------------------------------
+
+REVERSED_ROBOT = """\
+name: reversed base
+wheel_diameter_mm: 56
+axle_track_mm: 120
+body: {front_cm: 9, back_cm: 7, width_cm: 15}
+motors:
+  - {port: B, kind: large, wheel: left, mounted: reversed}
+  - {port: C, kind: large, wheel: right, mounted: reversed}
+"""
+
+
+def test_a_robot_whose_motors_face_backwards_drives_forward_with_inversed_polarity(run):
+    """ev3dev tacho-motor docs, polarity: "inversed" makes a positive speed_sp turn the motor the
+    other way (counter-clockwise); a program for a robot whose motors are mounted backwards sets
+    it so that positive speeds drive forward.  The robot file's `mounted: reversed` says so."""
+    robot = parse_robot(REVERSED_ROBOT, "reversed.yaml")
+    assert robot.left_wheel.reversed and robot.right_wheel.reversed
+    source = """
+        from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C, SpeedPercent
+        tank = MoveTank(OUTPUT_B, OUTPUT_C)
+        {setup}
+        tank.on_for_rotations(SpeedPercent(50), SpeedPercent(50), 1)
+        print(tank.left_motor.position, tank.right_motor.position)
+    """
+    inversed = "tank.left_motor.polarity = 'inversed'; tank.right_motor.polarity = 'inversed'"
+    forward = run(source.format(setup=inversed), robot=robot)
+    backward = run(source.format(setup="pass"), robot=robot)
+    one_turn_cm = 3.14159 * 5.6
+    x_forward = forward.trace.poses(0)[-1][0]
+    x_backward = backward.trace.poses(0)[-1][0]
+    assert abs(x_forward - (60 + one_turn_cm)) < 0.5, x_forward
+    assert abs(x_backward - (60 - one_turn_cm)) < 0.5, x_backward
+    assert lines(forward)[-1] == "360 360" and lines(backward)[-1] == "360 360"
+
+
+def test_mounted_is_checked_with_the_file_and_line():
+    text = REVERSED_ROBOT.replace("mounted: reversed}\n  - {port: C", "mounted: reverse}\n  - {port: C")
+    with pytest.raises(WorldFileError) as err:
+        parse_robot(text, "reversed.yaml")
+    message = str(err.value)
+    assert message.startswith("reversed.yaml:6:"), message
+    assert "did you mean 'reversed'" in message and "normal, reversed" in message
+
+
+def test_motors_are_mounted_normally_by_default():
+    robot = default_robot()
+    assert not any(m.reversed for m in robot.motors)
