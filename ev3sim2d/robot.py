@@ -15,13 +15,15 @@ from .devices.brick import Brick
 from .devices.color import ColorSensor
 from .devices.motor import TachoMotor
 from .devices.registry import SENSORS
+from .devices.touch import DEFAULT_BUMPER_CM
 from .physics import Physics
 from .world.pose import Pose
 from .world.robot_spec import RobotSpec
 
 
 def body_outline(spec: RobotSpec) -> list[tuple[float, float]]:
-    """The robot's footprint (cm, robot frame): its body box plus the tips of forward-facing touch sensors."""
+    """The robot's footprint (cm, robot frame): its body box plus the touch sensors' bumpers (each a
+    segment `bumper_cm` wide across the direction it faces, at the sensor)."""
     b = spec.body
     half = b.width_cm / 2
     points = [(b.front_cm, -half), (b.front_cm, half), (-b.back_cm, half), (-b.back_cm, -half)]
@@ -29,7 +31,10 @@ def body_outline(spec: RobotSpec) -> list[tuple[float, float]]:
         if sensor.kind == "touch":
             a = math.radians(sensor.angle_deg)
             x, y = sensor.radius_cm * math.cos(a), sensor.radius_cm * math.sin(a)
-            points += [(x, y - 1.0), (x, y + 1.0)]
+            facing = math.radians(sensor.aim_deg)  # (as sensor_pose: the heading turned by aim_deg)
+            side = float(sensor.options.get("bumper_cm", DEFAULT_BUMPER_CM)) / 2
+            dx, dy = -side * math.sin(facing), side * math.cos(facing)
+            points += [(x - dx, y - dy), (x + dx, y + dy)]
     return points
 
 
@@ -87,6 +92,9 @@ class Robot:
 
     def near(self, x: float, y: float, reach_cm: float) -> bool:
         return self.physics.near(x, y, reach_cm, self.group)
+
+    def touches_segment(self, x0: float, y0: float, x1: float, y1: float, reach_cm: float) -> bool:
+        return self.physics.touches_segment(x0, y0, x1, y1, reach_cm, self.group)
 
     def driving(self) -> bool:
         """Whether the wheel motors are still being driven (they keep going after a program ends)."""

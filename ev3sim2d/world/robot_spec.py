@@ -30,7 +30,7 @@ WHEELS = ("left", "right")
 MOUNTINGS = ("normal", "reversed")
 
 SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
-    "touch": {},
+    "touch": {"bumper_cm": (2.0, "cm", "bumper width across its tip: a wall anywhere on it presses it")},
     "gyro": {},
     "color": {"spot_cm": (1.5, "cm", "diameter of the floor spot the sensor sees")},
     "ultrasonic": {
