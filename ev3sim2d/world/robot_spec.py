@@ -46,6 +46,27 @@ SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
 }
 """Kind -> option -> (default, unit, meaning): the extra keys a sensor of that kind may have."""
 
+MODELLED_FACINGS = {  # which way each kind of sensor may face: what its device measures (devices/*.py)
+    "touch": ("forward",),
+    "gyro": ("down", "forward"),  # it measures the robot's turns, whichever way it is fitted
+    "color": ("down", "forward"),  # the floor's colour, or the light a wall ahead reflects
+    "ultrasonic": ("forward",),
+    "infrared": ("forward",),
+    "nxt-light": ("down", "forward"),
+    "nxt-sound": ("down", "forward"),  # it hears all round
+}
+UNMODELLED_FACING = {
+    "touch": "a touch sensor facing down would be pressed by the floor all the time; write `facing: forward`",
+    "ultrasonic": (
+        "an ultrasonic sensor facing down would measure its height above the floor, which ev3sim2d does "
+        "not model (the floor is flat and has no height); write `facing: forward`"
+    ),
+    "infrared": (
+        "an infrared sensor facing down would see the floor, which ev3sim2d does not model; "
+        "write `facing: forward`"
+    ),
+}
+
 DEFAULT_FACING = {
     "touch": "forward",
     "gyro": "down",
@@ -310,6 +331,8 @@ def _sensor(node: Node) -> SensorSpec:
     option_table = SENSOR_OPTIONS[kind]
     fields.check_keys(_SENSOR_KEYS + tuple(option_table))
     facing = _choice(fields, "facing", FACINGS, default=DEFAULT_FACING[kind])
+    if facing not in MODELLED_FACINGS[kind]:
+        raise fields.get("facing").error(UNMODELLED_FACING[kind])
     angle = fields.number("angle_deg", default=0.0, unit="degrees", example="angle_deg: 0")
     radius = fields.number("radius_cm", default=0.0, unit="cm", example="radius_cm: 7")
     if radius < 0:

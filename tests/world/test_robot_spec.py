@@ -139,6 +139,17 @@ def test_robot_colour_may_be_a_name_hex_or_rgb():
             9,
             ["unknown facing 'up'", "forward, down"],
         ),
+        (  # a sensor facing a way its device does not model is refused, never read from the floor
+            BASE + "sensors:\n  - {port: 4, kind: ultrasonic, facing: down}\n",
+            9,
+            ["ultrasonic sensor facing down", "does not model", "facing: forward"],
+        ),
+        (
+            BASE + "sensors:\n  - {port: 4, kind: infrared, facing: down}\n",
+            9,
+            ["infrared sensor facing down"],
+        ),
+        (BASE + "sensors:\n  - {port: 1, kind: touch, facing: down}\n", 9, ["touch sensor facing down"]),
         (
             BASE + "sensors:\n  - {port: 3, kind: color, cone_deg: 5}\n",
             9,
