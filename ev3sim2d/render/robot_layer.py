@@ -280,7 +280,7 @@ def _robot_parts(look: RobotLook) -> tuple[np.ndarray, tuple[tuple[str, str, int
             add("housing", sensor.port, _box(sx - 1.0, sy - 1.0, sx + 1.0, sy + 1.0))
     add("arrow", "", [(4.0, 0.0), (-1.5, 2.6), (-0.3, 0.0), (-1.5, -2.6)])
     for sensor in look.sensors:
-        if sensor.kind in SPOT_KINDS:
+        if sensor.kind in SPOT_KINDS and sensor.facing == "down":  # (facing forward it reads a wall)
             sx, sy = sensor.offset_cm
             h = sensor.spot_cm / 2
             add("spot", sensor.port, _box(sx - h, sy - h, sx + h, sy + h))
