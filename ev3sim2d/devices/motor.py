@@ -146,7 +146,6 @@ class TachoMotor(Device):
         self.mode = "stopped"
         self.state_bits = 0
         self.speed_dps = 0.0  # measured shaft speed, motor frame
-        self.planned_dps = 0.0  # the speed the motor was driven at in the last tick, motor frame
         self.target_shaft = 0.0
         self.target_position = 0  # run-to-*-pos: the target in counts, as the driver compares it
         self.run_left_s = 0.0
@@ -172,7 +171,7 @@ class TachoMotor(Device):
             return 0
         if mode == "direct":
             return self.duty_cycle_sp
-        dps = self.planned_dps
+        dps = self._drive_dps()
         duty = self._lag_duty or 100 * abs(dps) / self.max_speed
         return int(round(math.copysign(duty, dps * self.sign))) if dps else 0
 
@@ -358,7 +357,6 @@ class TachoMotor(Device):
             ramp_dps, _, ramping = self._ramp_plan(dt)  # before the shaft moves, as plan() saw it
         self.shaft_deg += turned
         self.speed_dps = turned / dt
-        self.planned_dps = planned / dt
         if mode == "stopped":
             return
         if mode == "coast":
@@ -393,16 +391,25 @@ class TachoMotor(Device):
                 return
         # stall: a shaft that keeps turning much less than planned (or not at all, at speed 0);
         # the driver reports stalled after TACHO_MOTOR_STALLED_MS of no motion (update_stall)
-        if abs(turned) <= STALL_RATIO * abs(planned) + 1e-9:
-            self._lag_s += dt
-            bits = 0 if mode == "direct" else self._push(abs(planned - turned) / dt)
-        else:
+        if abs(turned) > STALL_RATIO * abs(planned) + 1e-9:
             if self._lag_s:  # the PID's pushing ends with the lag
                 self._lag_s = self._error_sum = self._lag_duty = 0.0
-            bits = 0
+            self.state_bits = RUNNING | ramp_bit
+            return
+        self._lag_s += dt
+        bits = 0 if mode == "direct" else self._push(abs(planned - turned) / dt)
         if self._lag_s >= STALL_WINDOW_S - 1e-9:
             bits |= STALLED
         self.state_bits = RUNNING | ramp_bit | bits
+
+    def _drive_dps(self) -> float:
+        """The speed (deg/s, motor frame) a regulated run drives the shaft at now."""
+        mode = self.mode
+        if mode == "ramped":
+            return self.ramp_dps
+        if mode == "to_pos":
+            return math.copysign(abs(self.speed_sp), self.target_shaft - self.shaft_deg)
+        return float(self.sign * self.speed_sp)
 
     def _push(self, error: float) -> int:
         """The speed PID on a lagging shaft: its error (counts/s) adds up each tick and the duty cycle
@@ -413,7 +420,7 @@ class TachoMotor(Device):
             return 0
         pid = self.pid
         self._error_sum += error
-        duty = 100.0 * abs(self.planned_dps) / self.max_speed
+        duty = 100.0 * abs(self._drive_dps()) / self.max_speed
         duty += (pid["speed_pid/Kp"] * error + pid["speed_pid/Ki"] * self._error_sum) / PID_SCALE
         if duty > 100.0:
             self._error_sum -= error
