@@ -267,6 +267,8 @@ def test_a_robot_whose_motors_face_backwards_drives_forward_with_inversed_polari
 
 
 def test_mounted_is_checked_with_the_file_and_line():
+    """Our robot file format (docs/world-files.md, "Robot files"): a wrong `mounted` is reported as
+    file:line:column with the allowed words, as every other mistake in a robot file is."""
     text = REVERSED_ROBOT.replace("mounted: reversed}\n  - {port: C", "mounted: reverse}\n  - {port: C")
     with pytest.raises(WorldFileError) as err:
         parse_robot(text, "reversed.yaml")
@@ -276,5 +278,6 @@ def test_mounted_is_checked_with_the_file_and_line():
 
 
 def test_motors_are_mounted_normally_by_default():
+    """docs/world-files.md: `mounted` defaults to `normal`; the shipped driving base has no reversed motor."""
     robot = default_robot()
     assert not any(m.reversed for m in robot.motors)
