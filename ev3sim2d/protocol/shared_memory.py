@@ -194,8 +194,14 @@ class SharedChannel(Channel):
         self._words[self._in[2]] = 1 if flag else 0
 
     def take_wakeups(self) -> None:
-        """Read the wake-up bytes off the socket; ConnectionGone if the other side is gone."""
-        self._recv(4096, socket.MSG_DONTWAIT)
+        """Read the wake-up bytes off the socket; ConnectionGone if the other side is gone, once what it
+        wrote before it went has been read (a side that defers its wake-ups may end without one)."""
+        try:
+            self._recv(4096, socket.MSG_DONTWAIT)
+        except ConnectionGone:
+            if self._words[self._in[0]] == self._read:
+                raise
+            self.closed = False  # not yet: its last messages are still in the ring
 
     def _sleep_until_data(self, timeout_s: float | None = None) -> bool:
         """Block (not spin) until bytes arrive or timeout_s; False when the time is up."""

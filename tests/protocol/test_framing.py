@@ -2,6 +2,7 @@
 
 import os
 import socket
+import time
 
 import pytest
 
@@ -185,3 +186,26 @@ def test_a_brick_defers_its_wake_ups_only_when_the_simulator_says_it_may():
         assert got is woken
         sim.asleep(False)
         assert sim.receive(timeout_s=1) == ["ops", [["t", 10000]]]
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_what_a_side_wrote_before_it_died_without_waking_the_other_is_still_read():
+    """A brick that defers its wake-ups and is killed right after writing (a program that kills its
+    own process) leaves no wake-up byte, only the socket's end: the simulator, asleep, must still read
+    the brick's last messages before it says the brick is gone."""
+    sim, brick = shared_pair()
+    brick._defer = True  # as when the simulator lets it defer
+    sim.spin_s = 0.0  # the simulator sleeps on its socket at once
+    pid = os.fork()
+    if pid == 0:
+        try:
+            time.sleep(0.2)  # the simulator is asleep by now
+            brick.send(["ops", [["t", 1000000]]])  # no wake-up: deferred
+            brick.sock.close()  # its end of the socket goes at once, as when the process dies
+        finally:
+            os._exit(0)
+    brick.close()
+    assert sim.receive(timeout_s=5) == ["ops", [["t", 1000000]]]
+    os.waitpid(pid, 0)
+    with pytest.raises(ProtocolError):
+        sim.receive(timeout_s=5)
