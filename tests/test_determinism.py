@@ -32,6 +32,12 @@ SOURCES = {
         'words = ["alpha", "beta", "gamma", "delta", "echo", "foxtrot", "golf", "hotel"]\n'
         "value = sum(i * words.index(w) for i, w in enumerate(set(words))) % 97 / 97"
     ),
+    "order_of_a_set_of_the_programs_objects": (
+        "class Node:\n    def __init__(self, n):\n        self.n = n\n"
+        "nodes = set(Node(i) for i in range(60))\n"
+        "value = sum(i * node.n for i, node in enumerate(nodes)) % 97 / 97"
+    ),
+    "repr_of_an_object": "class Thing:\n    pass\nvalue = int(repr(Thing()).split()[-1][:-1], 16) % 97 / 97",
     "time_time": "import time\nvalue = time.time() % 1",
     "time_localtime": "import time\nt = time.localtime()\nvalue = (t.tm_hour * 3600 + t.tm_min * 60 + t.tm_sec) / 86400",
     "time_strftime": 'import time\nvalue = int(time.strftime("%H%M%S")) / 240000',

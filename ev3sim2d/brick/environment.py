@@ -29,6 +29,7 @@ import sys
 import time
 from collections.abc import Callable
 
+from . import identity
 from .scheduler import Scheduler
 from .threads import VirtualThreads
 
@@ -243,6 +244,7 @@ class BrickEnvironment:
         sys.__stdout__, sys.__stderr__, sys.__stdin__ = sys.stdout, sys.stderr, sys.stdin
         sys.argv = [self.program_path]
         sys.path[:0] = [d for d in self.program_dirs if d not in sys.path]
+        identity.install(self.program_dirs)
         self._real_exit = os._exit
         os._exit = self._os_exit
 
