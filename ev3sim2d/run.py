@@ -1,7 +1,8 @@
 """One run: programs drive their robots in a world until they end, the time limit, or a hang.
 
 Each program runs in a brick process of its own (ev3sim2d/brick/), sandboxed,
-on a robot of its own (program i starts at the world's start pose i); this
+on a robot of its own (program i starts at the world's start pose i, as the
+robot that start names, the world's robot, or the robot the caller gives); this
 process holds the world, steps it in lockstep with the bricks (session.py) and
 records the trace.  Nothing a program does reaches this process except through
 the protocol.  Whatever happens, the result holds the trace up to that moment,
@@ -12,7 +13,7 @@ from __future__ import annotations
 
 import gc
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -63,10 +64,32 @@ def _describe_devices(robot) -> str:
     return ", ".join(parts)
 
 
+def robot_specs(
+    world: World, count: int, robot: RobotSpec | Sequence[RobotSpec | None] | None = None
+) -> list[RobotSpec]:
+    """The robot of each of `count` programs in the world.
+
+    `robot` is one spec for every program, or one per program (None: not given); a robot not given is
+    the one the program's start pose names, else the world's.
+    """
+    if robot is None or isinstance(robot, RobotSpec):
+        given: list[RobotSpec | None] = [robot] * count
+    else:
+        given = list(robot)
+        if len(given) == 1:
+            given *= count
+        elif len(given) != count:
+            raise ValueError(
+                f"{len(given)} robots for {count} programs; give one robot for every program, "
+                "or one per program in the programs' order"
+            )
+    return [spec if spec is not None else world.start_robot(i) for i, spec in enumerate(given)]
+
+
 def run_programs(
     programs: list[str | Path],
     world: World,
-    robot: RobotSpec | None = None,
+    robot: RobotSpec | Sequence[RobotSpec | None] | None = None,
     time_limit_s: float | None = 60.0,
     seed: int = 0,
     hang_after_s: float = 5.0,
@@ -82,6 +105,8 @@ def run_programs(
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
+    robot: the robot of every program, or a list with one per program (None in it, or no robot: the
+    robot the program's start pose names, else the world's robot).
     presses: scripted button presses (ButtonPress), added to the world file's.
     readable: per program, what its brick may read besides Python itself (default: the program's folder).
     limits: CPU time, memory, file sizes and processes of each brick.
@@ -100,9 +125,9 @@ def run_programs(
             f"{len(loaded)} programs but the world '{world.name}' has {len(world.starts)} start pose(s); "
             f"add starts to the world file or run fewer programs"
         )
-    spec = robot or world.robot
+    specs = robot_specs(world, len(loaded), robot)
     names = ["robot"] if len(loaded) == 1 else [f"robot{i + 1}" for i in range(len(loaded))]
-    sim = Simulation(world, [(names[i], spec, world.starts[i]) for i in range(len(loaded))], seed=seed)
+    sim = Simulation(world, [(names[i], specs[i], world.starts[i]) for i in range(len(loaded))], seed=seed)
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
     presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
     sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
@@ -295,4 +320,4 @@ def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
     return echo
 
 
-__all__ = ["run_programs", "RunResult", "ProgramError", "StartBlocked", "echo_line"]
+__all__ = ["run_programs", "robot_specs", "RunResult", "ProgramError", "StartBlocked", "echo_line"]

@@ -49,6 +49,7 @@ _GRID_HELP = (
     "write `grid: |` and below it one line of cells per row, top row first (or a list of quoted strings)"
 )
 _START_EXAMPLE = "start: {cell: [1, 1], heading_deg: 0}"
+_START_KEYS = ("cell", "x_cm", "y_cm", "heading_deg", "robot")
 
 
 # -- reading ----------------------------------------------------------------------------
@@ -81,7 +82,7 @@ def parse_maze(text: str, path: str = "<string>") -> World:
     cells = read_text_grid(rows, legend, path)
     grid = Grid(cells.rows, cell_cm, legend, text="\n".join(row.text for row in rows))
     _check_size_and_border(grid_node, rows, grid)
-    starts = _starts(fields.require("start", _START_EXAMPLE), grid)
+    starts, start_robots = _starts(fields.require("start", _START_EXAMPLE), grid, path)
     regions = _regions(fields.get("regions"), cells.region_cells, grid)
     robot = _robot(fields.get("robot"), path)
     ambient = fields.number("ambient", default=DEFAULT_AMBIENT, unit="0..100", example="ambient: 10")
@@ -107,6 +108,7 @@ def parse_maze(text: str, path: str = "<string>") -> World:
         text=text,
         ambient=ambient,
         buttons=buttons,
+        start_robots=start_robots,
     )
 
 
@@ -227,17 +229,26 @@ def _check_size_and_border(node: Node, rows: list[TextRow], grid: Grid) -> None:
 # -- starts --------------------------------------------------------------------------------
 
 
-def _starts(node: Node, grid: Grid) -> list[Pose]:
+def _starts(node: Node, grid: Grid, path: str) -> tuple[list[Pose], list[RobotSpec | None]]:
+    """The start poses, and per start the robot it names (None: the world's robot)."""
     items = node.as_list("start", _START_EXAMPLE) if node.is_sequence else [node]
     if not items:
         raise node.error(f"'start' needs at least one pose; write e.g. `{_START_EXAMPLE}`")
-    return [_start(item, grid) for item in items]
+    poses = [_start(item, grid) for item in items]
+    robots = [_start_robot(item, path) for item in items]
+    return poses, robots
+
+
+def _start_robot(node: Node, path: str) -> RobotSpec | None:
+    """The robot a start names with `robot: FILE` (found as the world's `robot:` is), or None."""
+    fields = node.as_fields("start", _START_KEYS, _START_EXAMPLE)
+    return _robot(fields.get("robot"), path) if "robot" in fields else None
 
 
 def _start(node: Node, grid: Grid) -> Pose:
     if not node.is_mapping:
         raise node.error(f"a start is a mapping like `{_START_EXAMPLE}`, got {node.describe()}")
-    fields = node.as_fields("start", ("cell", "x_cm", "y_cm", "heading_deg"), _START_EXAMPLE)
+    fields = node.as_fields("start", _START_KEYS, _START_EXAMPLE)
     heading = fields.number(
         "heading_deg", default=0.0, unit="degrees, 0 = +x, counter-clockwise", example="heading_deg: 90"
     )

@@ -1,4 +1,4 @@
-"""A world as read from a maze file: the grid, where robots start, named regions and the robot to build."""
+"""A world as read from a maze file: the grid, where robots start, named regions and the robots to build."""
 
 from __future__ import annotations
 
@@ -29,11 +29,18 @@ class World:
     text: str | None = None
     ambient: float = DEFAULT_AMBIENT
     buttons: list[ButtonPress] = field(default_factory=list)  # scripted presses of the brick's buttons
+    # per start pose: the robot that start names (`robot:` in it), or None for the world's robot
+    start_robots: list[RobotSpec | None] = field(default_factory=list)
 
     @property
     def start(self) -> Pose:
         """The first start pose (the one a single robot uses)."""
         return self.starts[0]
+
+    def start_robot(self, index: int) -> RobotSpec:
+        """The robot that starts at start pose `index`: the one that start names, else the world's robot."""
+        own = self.start_robots[index] if index < len(self.start_robots) else None
+        return own if own is not None else self.robot
 
     def region(self, name: str) -> Region:
         """The region called `name`; KeyError listing the known names otherwise."""
