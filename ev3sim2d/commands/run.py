@@ -14,7 +14,7 @@ from ..simulation import StartBlocked
 from ..summary import run_summary, write_summary
 from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
-from ..world.robot_spec import load_robot
+from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 
@@ -27,7 +27,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
     )
-    parser.add_argument("--robot", metavar="FILE", help="robot description file (default: the world's robot)")
+    parser.add_argument(
+        "--robot",
+        action="append",
+        default=[],
+        metavar="FILE",
+        help="robot file or shipped robot name: once for every robot, or once per program in the programs' "
+        "order (default: the robot the start names, else the world's robot)",
+    )
     parser.add_argument(
         "--time",
         type=float,
@@ -67,6 +74,37 @@ def _press(text: str) -> ButtonPress:
         raise argparse.ArgumentTypeError(str(err)) from None
 
 
+class _RobotOptionError(Exception):
+    """A --robot option that cannot be used; the message says which and what to do."""
+
+
+def _robots(names: list[str], programs: list[str]) -> list[RobotSpec] | None:
+    """The robots --robot gives: none (each start's or the world's robot), one for all, or one per program."""
+    if len(names) > 1 and len(names) != len(programs):
+        raise _RobotOptionError(
+            f"{len(names)} --robot options for {len(programs)} program(s); give --robot once (for every "
+            f"robot) or once per program, in the programs' order"
+        )
+    robots = []
+    for number, (name, program) in enumerate(zip(names, programs, strict=False), start=1):
+        found = find_robot(name)
+        if found is None:
+            which = f"--robot {name}"
+            if len(names) > 1:
+                which += f" (the robot of the {_ordinal(number)} program, {program})"
+            raise _RobotOptionError(
+                f"{which}: no such robot file (looked in the current folder and among the shipped robots: "
+                f"{', '.join(shipped_robot_names())}); check the path, or give a shipped robot's name"
+            )
+        robots.append(load_robot(found))
+    return robots or None
+
+
+def _ordinal(number: int) -> str:
+    suffix = "th" if 10 <= number % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(number % 10, "th")
+    return f"{number}{suffix}"
+
+
 def _write_outputs(args, result: RunResult) -> None:
     if args.trace:
         result.trace.save(args.trace)
@@ -81,7 +119,7 @@ def main(args) -> int:
         return fail("--time must be a positive number of seconds")
     try:
         world = load_maze(find_maze(args.maze))
-        robot = load_robot(args.robot) if args.robot else None
+        robot = _robots(args.robot, args.programs)
         for program in args.programs:
             if not Path(program).is_file():
                 return fail(f"{program}: no such program file")
@@ -90,7 +128,7 @@ def main(args) -> int:
         result = run_programs(
             args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
         )
-    except WorldFileError as err:
+    except (WorldFileError, _RobotOptionError) as err:
         return fail(str(err))
     except ProgramError as err:
         return fail(str(err), EXIT_PROGRAM_ERROR)
