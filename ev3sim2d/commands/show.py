@@ -28,12 +28,11 @@ def main(args) -> int:
         return fail("--width must be 160 to 8000 pixels")
     try:
         world = load_maze(find_maze(args.maze))
-        spec = load_robot(args.robot) if args.robot else world.robot
+        given = load_robot(args.robot) if args.robot else None
         names = ["robot"] if len(world.starts) == 1 else [f"robot{i + 1}" for i in range(len(world.starts))]
         # a simulation that never ticks: its trace describes the world and the robots at their starts
-        trace = Simulation(
-            world, [(name, spec, pose) for name, pose in zip(names, world.starts, strict=True)]
-        ).trace
+        robots = [(names[i], given or world.start_robot(i), pose) for i, pose in enumerate(world.starts)]
+        trace = Simulation(world, robots).trace
     except WorldFileError as err:
         return fail(str(err))
     except (StartBlocked, FileNotFoundError) as err:

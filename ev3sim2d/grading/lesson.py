@@ -132,6 +132,8 @@ class Lesson:
             h.update((world.text or "").encode())
             h.update(repr(dataclasses.replace(world.robot, source=None)).encode())
             h.update(repr(world.starts).encode())
+            for i in range(len(world.start_robots)):  # a start's own robot decides a score too
+                h.update(repr(dataclasses.replace(world.start_robot(i), source=None)).encode())
         return h.hexdigest()[:16]
 
 
