@@ -49,11 +49,14 @@ class FrameRenderer:
         self.layout = FrameLayout.video(self.world.grid.size_cm, *size)
         self.view = self.layout.view
         self.looks = robot_looks(trace.robots)
+        # with several robots each carries its number (robot1 is 1), as in the panel's headings
+        self.numbers = [i + 1 if len(self.looks) > 1 else None for i in range(len(self.looks))]
         self.walls = Walls(self.world.grid.wall_rectangles())
         self.label_font = Font(max(8, int(round(self.layout.font_px * 0.85))))
         self.trail_px = max(1, self.view.length(0.6))
         self.map_bounds = (0, 0, self.layout.panel_x, self.layout.height)
         self.panel = Panel(trace, self.timeline, self.looks, self.layout, speed)
+        self.caption_font = Font(self.layout.font_px, bold=True)  # (the panel's may be smaller)
         background = np.empty((self.layout.height, self.layout.width, 3), dtype=np.uint8)
         background[:] = palette.SURROUND
         draw_world(background, self.world, self.view, self.label_font)
@@ -96,7 +99,8 @@ class FrameRenderer:
         for i, look in enumerate(self.looks):
             first = max(self._trail_tick[i], -1)
             draw_recent_trail(frame, self.view, look, tl.path(i, first, tick), self.trail_px + 1)
-        for i, look in enumerate(self.looks):
+        poses, pressed_by_robot = [], []
+        for i, look in enumerate(self.looks):  # every beam first, so that no label hides a robot
             pose = tl.pose(i, tick)
             pressed = {}
             for sensor in look.sensors:
@@ -108,8 +112,11 @@ class FrameRenderer:
                     )
                 if sensor.kind == "touch" and reading is not None and reading[1]:
                     pressed[sensor.port] = bool(reading[1][0])
+            poses.append(pose)
+            pressed_by_robot.append(pressed)
+        for i, (look, pose, pressed) in enumerate(zip(self.looks, poses, pressed_by_robot, strict=True)):
             touching = tl.touching(i, tick)
-            draw_robot(frame, self.view, look, pose, pressed, touching)
+            draw_robot(frame, self.view, look, pose, pressed, touching, self.numbers[i])
             if touching:
                 point = contact_point(look, pose, self.walls)
                 if point is not None:
@@ -126,7 +133,7 @@ class FrameRenderer:
             if s.kind != "tone" and s.start_s <= t_s < max(s.end_s, s.start_s + hold):
                 who = self.looks[s.robot].name if len(self.looks) > 1 else "robot"
                 lines.append(f"{who} says “{s.text}”" if s.kind == "speech" else f"{who} plays {s.text}")
-        font = self.panel.bold
+        font = self.caption_font
         y = self.layout.height - (font.height + 10) * len(lines) - 8
         for line in lines:
             text = font.fit(line, self.layout.panel_x - 40)
@@ -162,8 +169,9 @@ def draw_world_picture(trace: Trace, width_px: int = 800) -> np.ndarray:
     label_font = Font(max(8, int(round(layout.font_px * 0.85))))
     draw_world(image, world, layout.view, label_font)
     timeline = Timeline(trace)
-    for i, look in enumerate(robot_looks(trace.robots)):
-        draw_robot(image, layout.view, look, timeline.pose(i, -1))
+    looks = robot_looks(trace.robots)
+    for i, look in enumerate(looks):
+        draw_robot(image, layout.view, look, timeline.pose(i, -1), number=i + 1 if len(looks) > 1 else None)
     width_cm, height_cm = grid.size_cm
     y = layout.view.box[3] + max(2, layout.font_px // 2)
     bold = Font(layout.font_px, bold=True)

@@ -24,8 +24,19 @@ BLUE = (0, 114, 178)
 VERMILLION = (213, 94, 0)
 REDDISH_PURPLE = (204, 121, 167)
 
-ROBOT_COLORS = [ORANGE, SKY_BLUE, BLUISH_GREEN, REDDISH_PURPLE, YELLOW, BLUE]
-"""Colours for robots that share the robot file's colour: the second robot takes the next one here."""
+ROBOT_COLORS = [SKY_BLUE, BLUISH_GREEN, REDDISH_PURPLE, YELLOW, BLUE, ORANGE]
+"""Colours, in order, for robots that would look like an earlier one (e.g. all from the default robot
+file): each takes the first of these that looks like no robot's colour yet."""
+ALIKE_DISTANCE = 80.0  # colours closer than this (redmean distance, 0..765) look alike
+
+
+def looks_alike(a: tuple[int, int, int], b: tuple[int, int, int]) -> bool:
+    """Whether two (r, g, b) colours are hard to tell apart: the cheap "redmean" estimate of their distance."""
+    r_mean = (a[0] + b[0]) / 2
+    dr, dg, db = (a[k] - b[k] for k in range(3))
+    distance = ((2 + r_mean / 256) * dr * dr + 4 * dg * dg + (2 + (255 - r_mean) / 256) * db * db) ** 0.5
+    return distance < ALIKE_DISTANCE
+
 
 # the map
 SURROUND = bgr((40, 42, 48))  # outside the world

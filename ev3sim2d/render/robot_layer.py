@@ -17,7 +17,7 @@ import numpy as np
 from ..world.robot_spec import DEFAULT_ROBOT_COLOR
 from . import palette
 from .layout import SHIFT, MapView
-from .text import Font, draw_label
+from .text import Font, blend_mask, draw_label
 from .walls import Walls
 
 SPOT_KINDS = ("color", "nxt-light")  # sensors that look down at a spot of floor
@@ -27,6 +27,11 @@ TRAIL_RECENT_S = 3.0  # the trail fades in over this much simulated time
 RECENT_TRAIL_POINTS = 60  # the recent trail is drawn through at most about this many points
 TRAIL_TINT = 0.45  # share of the robot colour in the old trail (the rest white)
 CONTACT_REACH_CM = 1.5  # a wall this close to the body is where it touches
+ARROW_BACK_CM = 1.5  # the heading arrow reaches this far behind the axle
+# a robot's number sits on a disc at least this share of the picture's height in radius (10 px in a
+# 720 px frame), and at least this many px, to stay readable however small the robot is drawn
+NUMBER_MIN_RADIUS_SHARE = 1 / 72
+NUMBER_MIN_RADIUS_PX = 6
 
 # where a sensor sits when an old trace does not say: angle_deg, radius_cm, facing
 _DEFAULT_MOUNTS = {
@@ -87,13 +92,10 @@ class RobotLook:
 
 
 def robot_looks(descriptions: list[dict]) -> list[RobotLook]:
-    """One RobotLook per robot of a trace; robots sharing a colour get distinct ones from the palette."""
-    looks, used = [], set()
-    for i, d in enumerate(descriptions):
-        rgb = tuple(d.get("color") or DEFAULT_ROBOT_COLOR)
-        if rgb in used:
-            rgb = next((c for c in palette.ROBOT_COLORS if c not in used), palette.ROBOT_COLORS[i % 6])
-        used.add(rgb)
+    """One RobotLook per robot of a trace, in its robot file's colour unless that looks like an earlier one's."""
+    colors = robot_colors([tuple(d.get("color") or DEFAULT_ROBOT_COLOR) for d in descriptions])
+    looks = []
+    for i, (d, rgb) in enumerate(zip(descriptions, colors, strict=True)):
         body = d.get("body") or {"front_cm": 9.0, "back_cm": 7.0, "width_cm": 15.0}
         mounts = {m["port"]: m for m in d.get("sensor_mounts", [])}
         sensors = []
@@ -128,6 +130,24 @@ def robot_looks(descriptions: list[dict]) -> list[RobotLook]:
             )
         )
     return looks
+
+
+def robot_colors(own: list[tuple[int, int, int]]) -> list[tuple[int, int, int]]:
+    """The (r, g, b) each robot is drawn in: its own colour when no earlier robot's looks like it, else the
+    first of the palette's robot colours that looks like no robot's (so that no two robots look alike)."""
+    kept: list[tuple[int, int, int] | None] = []
+    for rgb in own:
+        alike = any(k is not None and palette.looks_alike(rgb, k) for k in kept)
+        kept.append(None if alike else tuple(int(c) for c in rgb))
+    taken = [k for k in kept if k is not None]
+    colors = []
+    for i, rgb in enumerate(kept):
+        if rgb is None:
+            free = [c for c in palette.ROBOT_COLORS if not any(palette.looks_alike(c, t) for t in taken)]
+            rgb = free[0] if free else palette.ROBOT_COLORS[i % len(palette.ROBOT_COLORS)]
+            taken.append(rgb)
+        colors.append(rgb)
+    return colors
 
 
 def beam_distance_cm(sensor: SensorLook, reading: tuple[str, list[int]] | None) -> float | None:
@@ -278,7 +298,7 @@ def _robot_parts(look: RobotLook) -> tuple[np.ndarray, tuple[tuple[str, str, int
                 )
         else:
             add("housing", sensor.port, _box(sx - 1.0, sy - 1.0, sx + 1.0, sy + 1.0))
-    add("arrow", "", [(4.0, 0.0), (-1.5, 2.6), (-0.3, 0.0), (-1.5, -2.6)])
+    add("arrow", "", [(4.0, 0.0), (-ARROW_BACK_CM, 2.6), (-0.3, 0.0), (-ARROW_BACK_CM, -2.6)])
     for sensor in look.sensors:
         if sensor.kind in SPOT_KINDS and sensor.facing == "down":  # (facing forward it reads a wall)
             sx, sy = sensor.offset_cm
@@ -294,8 +314,10 @@ def draw_robot(
     pose: tuple[float, float, float],
     touch_pressed: dict[str, bool] | None = None,
     touching: bool = False,
+    number: int | None = None,
 ) -> None:
-    """Body, wheels, sensors where they sit and a heading arrow at `pose`; a vermillion outline while touching."""
+    """Body, wheels, sensors where they sit and a heading arrow at `pose`; a vermillion outline while touching;
+    the robot's `number`, if given, upright on a disc behind the arrow."""
     touch_pressed = touch_pressed or {}
     points, parts = _robot_parts(look)
     fixed = view.fixed(_to_world(points, *pose))
@@ -322,9 +344,38 @@ def draw_robot(
             cv2.fillPoly(image, [shape], palette.OUTLINE, cv2.LINE_AA, SHIFT)
             edge = palette.CONTACT if touching else palette.OUTLINE
             cv2.polylines(image, [body], True, edge, outline_px * (2 if touching else 1), cv2.LINE_AA, SHIFT)
+            if number is not None:
+                _draw_number(image, view, look, pose, number)
         elif part == "spot":
             cv2.polylines(image, [shape], True, palette.LABEL_BG, max(2, outline_px) + 2, cv2.LINE_AA, SHIFT)
             cv2.polylines(image, [shape], True, palette.SPOT, max(2, outline_px), cv2.LINE_AA, SHIFT)
+
+
+def _draw_number(
+    image: np.ndarray, view: MapView, look: RobotLook, pose: tuple[float, float, float], number: int
+) -> None:
+    """The robot's number, dark on a white disc in the body's back half (behind the arrow), kept upright."""
+    back = look.back_cm - ARROW_BACK_CM  # the body behind the arrow
+    radius_cm = max(0.5, min(back / 2, look.width_cm / 3))
+    ((cx, cy),) = view.fixed(_to_world([(-(look.back_cm + ARROW_BACK_CM) / 2, 0.0)], *pose))
+    smallest = max(NUMBER_MIN_RADIUS_PX, int(round(image.shape[0] * NUMBER_MIN_RADIUS_SHARE)))
+    radius = max(smallest, int(round(radius_cm * view.scale)))
+    mask, (w, h) = _number_mask(str(number), radius)
+    cv2.circle(image, (int(cx), int(cy)), radius << SHIFT, palette.LABEL_BG, -1, cv2.LINE_AA, SHIFT)
+    cv2.circle(image, (int(cx), int(cy)), radius << SHIFT, palette.OUTLINE, 1, cv2.LINE_AA, SHIFT)
+    x = int(round(cx / (1 << SHIFT) - w / 2))
+    y = int(round(cy / (1 << SHIFT) - h / 2))
+    blend_mask(image, mask, x, y, palette.LABEL_FG)
+
+
+@functools.lru_cache(maxsize=32)
+def _number_mask(text: str, radius_px: int) -> tuple[np.ndarray, tuple[int, int]]:
+    """The coverage of `text` in bold digits that fill a disc of `radius_px`, cropped to its ink."""
+    font = Font(max(8, int(round(radius_px * 1.45))), bold=True)
+    mask = font.mask(text)
+    rows, cols = np.nonzero(mask)
+    mask = np.ascontiguousarray(mask[rows.min() : rows.max() + 1, cols.min() : cols.max() + 1])
+    return mask, (mask.shape[1], mask.shape[0])
 
 
 def _rotated_box(cx: float, cy: float, depth: float, width: float, aim: float) -> list[tuple[float, float]]:
