@@ -26,7 +26,9 @@ from .timeline import Timeline
 
 LCD_SIZE = (178, 128)
 LCD_BLANK = (70, 72, 76)  # the screen before the program draws on it
-LCD_SHARE = 0.2  # of the frame's height, at most, for each robot's screen
+LCD_SHARE = 0.2  # of the frame's height, at most, for each robot's screen (half that in a compact panel)
+MIN_FONT_PX = 9  # a panel for several robots shrinks its text down to this, at most to 0.6 of its size
+PRINTED_ROWS_WANTED = 2  # and does so until this many printed lines fit below the robots, if they can
 STATE_PRIORITY = ("stalled", "overloaded", "holding", "running", "ramping")
 LED_SIDES = (("L", "led0"), ("R", "led1"))
 LED_COLORS = {
@@ -117,7 +119,28 @@ class Panel:
         self.looks = looks
         self.speed = speed
         self.x0, self.x1, self.height = layout.panel_x, layout.width, layout.height
-        px = layout.font_px
+        self.many = len(trace.robots) > 1
+        self._lcd_cache: dict[tuple[int, int], np.ndarray] = {}
+        self._printed_cache: tuple[int, np.ndarray] | None = None
+        # the full layout if every robot's section fits; else compact ones (no column headings), their
+        # text ever smaller, until they fit with room for a few printed lines, or at least fit
+        candidates = [(False, layout.font_px)]
+        if self.many:
+            smallest = max(MIN_FONT_PX, int(layout.font_px * 0.6))
+            candidates += [(True, px) for px in range(layout.font_px, smallest - 1, -1)]
+        fitting = None
+        for compact, px in candidates:
+            self._plan(compact, px)
+            bottom = self.sections[-1][1] if self.sections else 0
+            if bottom <= self.height and self.printed_rows >= PRINTED_ROWS_WANTED:
+                break
+            if fitting is None and bottom <= self.height:
+                fitting = (compact, px)
+        else:
+            if fitting is not None:
+                self._plan(*fitting)
+
+    def _fonts(self, px: int) -> None:
         self.font = Font(px)
         self.bold = Font(px, bold=True)
         self.big = Font(int(round(px * 1.7)), bold=True)
@@ -125,16 +148,16 @@ class Panel:
         self.row = int(round(self.font.height * 1.2))
         self.left = self.x0 + self.pad
         self.right = self.x1 - self.pad
-        self._lcd_cache: dict[tuple[int, int], np.ndarray] = {}
-        self._printed_cache: tuple[int, np.ndarray] | None = None
-        self._plan()
 
     # ------------------------------------------------------------ layout
     def col(self, chars: int) -> int:
         """x of a text column, counted in characters from the panel's left margin."""
         return self.left + chars * self.font.advance
 
-    def _plan(self) -> None:
+    def _plan(self, compact: bool, font_px: int) -> None:
+        """Where everything goes, with text of `font_px` and, if `compact`, no column headings."""
+        self._fonts(font_px)
+        self.compact = compact
         f = self.font
         # motor columns, counted from the right so that they fit any panel of 38 characters or more
         self.state_x = self.right - f.width("overloaded")
@@ -151,25 +174,29 @@ class Panel:
         y += self.pad // 2
         self.robot_rows: list[_RobotRows] = []
         self.robot_headers: list[int] = []
+        self.sections: list[tuple[int, int]] = []  # each robot's part of the panel: top, bottom y
         for i, robot in enumerate(self.trace.robots):
             self.robot_headers.append(y)
+            top = y
             leds_y = y
             y += self.row
-            self.sensor_header_y = y  # the same offset for every robot
-            y += self.row
+            if not compact:
+                y += self.row  # sensor header
             sensor_ys = []
             for _ in robot["sensors"]:
                 sensor_ys.append(y)
                 y += self.row
             y += self.row // 3
-            y += self.row  # motor header
+            if not compact:
+                y += self.row  # motor header
             motor_ys = []
             for _ in robot["motors"]:
                 motor_ys.append(y)
                 y += self.row
             lcd_box = None
             if self.timeline.used_lcd(i):
-                scale = min((self.right - self.left) / LCD_SIZE[0], self.height * LCD_SHARE / LCD_SIZE[1])
+                share = LCD_SHARE / 2 if compact else LCD_SHARE
+                scale = min((self.right - self.left) / LCD_SIZE[0], self.height * share / LCD_SIZE[1])
                 if scale >= 1:
                     scale = int(scale)
                 w, h = int(LCD_SIZE[0] * scale), int(LCD_SIZE[1] * scale)
@@ -181,6 +208,7 @@ class Panel:
                 sound_y = y
                 y += self.row
             self.robot_rows.append(_RobotRows(leds_y, sensor_ys, motor_ys, lcd_box, sound_y))
+            self.sections.append((top, y))
             y += self.pad // 2
             self.rules.append(y)
             y += self.pad // 2
@@ -208,27 +236,33 @@ class Panel:
             zip(self.trace.robots, self.looks, self.robot_rows, strict=True)
         ):
             y = self.robot_headers[i]
+            x = self.left
+            if self.many:  # its number, as drawn on the robot
+                x = _text(image, self.bold, str(i + 1), x, y, palette.HEADING) + f.advance
             sw = f.height - 4
-            cv2.rectangle(image, (self.left, y + 2), (self.left + sw, y + 2 + sw), look.color, -1)
-            cv2.rectangle(image, (self.left, y + 2), (self.left + sw, y + 2 + sw), palette.TEXT, 1)
+            cv2.rectangle(image, (x, y + 2), (x + sw, y + 2 + sw), look.color, -1)
+            cv2.rectangle(image, (x, y + 2), (x + sw, y + 2 + sw), palette.TEXT, 1)
+            x += 2 * f.advance  # (the swatch is a little narrower than two characters)
             _text(
                 image,
                 self.bold,
-                self.bold.fit(look.name, self.right - f.width("LEDs L   yellow R   yellow  ") - self.col(2)),
-                self.col(2),
+                self.bold.fit(look.name, self.right - f.width("LEDs L   yellow R   yellow  ") - x),
+                x,
                 y,
                 palette.HEADING,
             )
-            _text(image, f, "port kind       mode", self.left, y + self.row, dim)
-            _text(image, f, "value", self.right, y + self.row, dim, align="right")
+            if not self.compact:
+                _text(image, f, "port kind       mode", self.left, y + self.row, dim)
+                _text(image, f, "value", self.right, y + self.row, dim, align="right")
             for (port, kind), sy in zip(robot["sensors"], rows.sensor_ys, strict=True):
                 _text(image, f, port, self.left, sy, palette.TEXT)
                 _text(image, f, SENSOR_LABELS.get(kind, kind), self.col(5), sy, palette.TEXT)
-            my = rows.motor_ys[0] - self.row if rows.motor_ys else rows.sensor_ys[-1] + self.row
-            _text(image, f, "port kind", self.left, my, dim)
-            _text(image, f, "speed", self.speed_end, my, dim, align="right")
-            _text(image, f, "position", self.position_end, my, dim, align="right")
-            _text(image, f, "state", self.state_x, my, dim)
+            if not self.compact:
+                my = rows.motor_ys[0] - self.row if rows.motor_ys else rows.sensor_ys[-1] + self.row
+                _text(image, f, "port kind", self.left, my, dim)
+                _text(image, f, "speed", self.speed_end, my, dim, align="right")
+                _text(image, f, "position", self.position_end, my, dim, align="right")
+                _text(image, f, "state", self.state_x, my, dim)
             for (port, kind), ty in zip(robot["motors"], rows.motor_ys, strict=True):
                 _text(image, f, port, self.left, ty, palette.TEXT)
                 _text(image, f, kind, self.col(5), ty, palette.TEXT)
@@ -348,7 +382,7 @@ class Panel:
         if cached is None or cached[0] != len(lines):
             block = np.empty((self.printed_rows * self.row, self.x1 - self.x0, 3), dtype=np.uint8)
             block[:] = palette.PANEL_BG
-            many = len(self.trace.robots) > 1
+            many = self.many
             for k, line in enumerate(lines[-self.printed_rows :]):
                 y = k * self.row
                 stamp = f"{line.t_s:7.2f}"
