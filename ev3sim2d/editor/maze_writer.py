@@ -12,6 +12,8 @@ from __future__ import annotations
 import json
 import re
 
+import yaml
+
 from ..world.cell import Cell
 from ..world.legend import Legend
 from ..world.yaml_source import Fields, Node, load_yaml_text
@@ -244,9 +246,26 @@ def _start_text(text: str, block: tuple[Node, Node], edited: EditedWorld) -> str
     key, value = block
     comment = _key_comment(text, key, value)
     poses = [_pose_fields(pose, edited) for pose in edited.starts]
+    for fields, robot in zip(poses, _start_robots(text, value), strict=False):
+        if robot:  # a start's own robot (`robot: FILE`) stays with it
+            fields.append(robot)
     if len(poses) == 1 and not value.is_sequence:
         return f"start:{comment}\n" + "".join(f"  {field}\n" for field in poses[0])
     return f"start:{comment}\n" + "".join("  - {" + ", ".join(fields) + "}\n" for fields in poses)
+
+
+def _start_robots(text: str, value: Node) -> list[str]:
+    """Each start's `robot: ...` as written (a file name or a shipped robot's), or "" for none."""
+    starts = list(value.raw.value) if value.is_sequence else [value.raw]
+    found = []
+    for start in starts:
+        robot = ""
+        if isinstance(start, yaml.MappingNode):
+            for key, item in start.value:
+                if key.value == "robot" and isinstance(item, yaml.ScalarNode):
+                    robot = "robot: " + text[item.start_mark.index : item.end_mark.index]
+        found.append(robot)
+    return found
 
 
 def _pose_fields(pose, edited: EditedWorld) -> list[str]:

@@ -123,3 +123,26 @@ def test_regions_removed_and_resized_grid():
     assert world.regions == {} and "regions:" not in out
     assert world.starts == [Pose(45.0, 45.0, 0.0)]
     assert "start:\n  x_cm: 45\n  y_cm: 45\n  heading_deg: 0\n" in out
+
+
+def test_moving_starts_keeps_each_starts_own_robot(tmp_path):
+    """A start that names its own robot (`robot: FILE`) keeps it when the editor moves the starts."""
+    text = _source(MAZES[[p.stem for p in MAZES].index("empty")]).text
+    start = text[text.index("\nstart:") + 1 :]
+    start_block = start[: start.index("\n", start.index("heading_deg")) + 1]
+    text = text.replace(
+        start_block,
+        "start:\n"
+        "  - {x_cm: 40, y_cm: 40, heading_deg: 0, robot: ev3-driving-base}\n"
+        "  - {x_cm: 80, y_cm: 40, heading_deg: 0}\n",
+    )
+    path = tmp_path / "two.yaml"
+    path.write_text(text)
+    source = MazeSource(text, str(path))
+    edited = source.as_edited()
+    edited.starts = [Pose(44.0, 40.0, 90.0), Pose(84.0, 40.0, 0.0)]
+    written = write_maze_text(source, edited)
+    world = parse_maze(written, str(path))
+    assert [p.x_cm for p in world.starts] == [44.0, 84.0]
+    assert "robot: ev3-driving-base" in written
+    assert len(world.start_robots) >= 1 and world.start_robots[0] is not None
