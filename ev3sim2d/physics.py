@@ -11,6 +11,13 @@ velocity along the wall loses WALL_FRICTION times the part it pushes into the
 wall (Coulomb's law for a body driven at a set speed: the wall pushes back as
 hard as the robot pushes in, and friction takes that much of the sliding).  Shapes
 of robot i are in filter group i + 1, so its own sensors never see it.
+
+Robots push each other (`Physics._push`, only while two robots touch): along the line between
+them each robot's wheels push with the power they run at (a DC motor's force falls linearly
+from its full power at rest to 0 at the speed it is driven at), and a robot whose wheels do not
+drive toward the other resists with what its stopped motors hold (hold, brake, coast: HOLD_PCT,
+BRAKE_PCT, COAST_PCT a wheel motor) until it is pushed harder than that.  docs/simulation.md
+has the model and its numbers.
 """
 
 from __future__ import annotations
@@ -26,6 +33,13 @@ ROBOT_MASS_KG = 0.7
 # plastic-on-wood pairs measure about 0.3 to 0.5; a robot pushing a wall at 45 degrees keeps about
 # 60 % of its sliding speed, head-on it stops
 WALL_FRICTION = 0.4
+# how hard a stopped wheel motor holds its robot against another robot's push, in % of a motor's
+# full power (a robot's push is the sum of its wheel motors' power in %, up to 200 for two wheels):
+# `hold` fights back with its position PID at up to full power; `brake` shorts the windings, which
+# with the gear train resists about half as hard; a coasting motor has only its gears' friction
+HOLD_PCT = 100.0
+BRAKE_PCT = 50.0
+COAST_PCT = 5.0
 
 
 class RobotBody:
@@ -38,7 +52,12 @@ class RobotBody:
         self.group = group
         self.contacts = 0  # shapes touched now (walls and robots)
         self.touching = 0  # wall shapes touched now
+        self.robots_touching = 0  # other robots' shapes touched now
         self.wall_contacts = 0  # times the robot started touching a wall
+        # while it touches another robot (Robot.before_step sets them): how hard its wheels push,
+        # the sum of the wheel motors' power in %, and how hard its stopped wheels hold, in %
+        self.push_pct = 0.0
+        self.hold_pct = 0.0
 
     def drive(self, speed: float, heading: float, turn_rate: float) -> None:
         """Move at speed (cm/s) along heading (rad) while turning at turn_rate (rad/s)."""
@@ -53,14 +72,25 @@ class RobotBody:
         p = lib.cpBodyGetPosition(self._cp_body)
         return p.x, p.y, lib.cpBodyGetAngle(self._cp_body)
 
+    def velocity(self) -> tuple[float, float]:
+        v = lib.cpBodyGetVelocity(self._cp_body)
+        return v.x, v.y
+
+    def set_velocity(self, vx: float, vy: float) -> None:
+        lib.cpBodySetVelocity(self._cp_body, (vx, vy))
+
     def _unblocked(self, vx: float, vy: float) -> tuple[float, float]:
-        """The velocity less its components into the shapes the robot touches."""
+        """The velocity less its components into the walls the robot touches (other robots are
+        pushed: Physics._push)."""
         normals = []
         shape = self.shape
 
         def collect(arbiter: pymunk.Arbiter) -> None:
+            a, b = arbiter.shapes
+            if (b if a is shape else a).collision_type != WALL:
+                return
             n = arbiter.normal  # points from shapes[0] to shapes[1]
-            normals.append((n.x, n.y) if arbiter.shapes[0] is shape else (-n.x, -n.y))
+            normals.append((n.x, n.y) if a is shape else (-n.x, -n.y))
 
         self.body.each_arbiter(collect)
         for _ in range(2):  # twice, for corners
@@ -95,6 +125,7 @@ class Physics:
         self._filters: dict[int, pymunk.ShapeFilter] = {}  # per robot group: what its sensors may see
         self._probes: dict[tuple[int, float], pymunk.Segment] = {}  # touches_segment's query shapes
         self.robots: dict[pymunk.Body, RobotBody] = {}
+        self.robot_pairs = 0  # robot-robot contacts now, twice (once from each robot)
 
     def add_robot(self, outline: list[tuple[float, float]], x: float, y: float, heading: float) -> RobotBody:
         """A robot body around (0, 0) = the middle of its axle, facing +x, placed at (x, y, heading)."""
@@ -129,7 +160,10 @@ class Physics:
             if robot is None:
                 continue
             robot.contacts = max(robot.contacts + change, 0)
-            if other.collision_type == WALL:
+            if other.collision_type == ROBOT:
+                robot.robots_touching = max(robot.robots_touching + change, 0)
+                self.robot_pairs = max(self.robot_pairs + change, 0)  # (counted once for each side)
+            elif other.collision_type == WALL:
                 if change > 0 and robot.touching == 0:
                     robot.wall_contacts += 1
                 robot.touching = max(robot.touching + change, 0)
@@ -137,7 +171,30 @@ class Physics:
     def step(self, dt: float) -> None:
         # Chipmunk's step itself: nothing is added or removed while the world runs, which is all
         # pymunk's Space.step adds around it (at a dozen Python calls a tick).
+        if self.robot_pairs:
+            self._push()
         lib.cpSpaceStep(self._cp_space, dt)
+
+    def _push(self) -> None:
+        """Settle, for each pair of touching robots, how fast they move along the line between
+        them; their velocities (set by drive) are what their wheels want, less the walls."""
+        pairs = []
+        for robot in self.robots.values():  # in the order the robots were added: deterministic
+            if not robot.robots_touching:
+                continue
+
+            def collect(arbiter: pymunk.Arbiter, robot: RobotBody = robot) -> None:
+                a, b = arbiter.shapes
+                them = self.robots.get((b if a is robot.shape else a).body)
+                if them is None or them.group < robot.group:
+                    return  # a wall, or a pair already taken from the other side
+                n = arbiter.normal  # from shapes[0] to shapes[1]
+                nx, ny = (n.x, n.y) if a is robot.shape else (-n.x, -n.y)
+                pairs.append((robot, them, nx, ny))
+
+            robot.body.each_arbiter(collect)
+        for a, b, nx, ny in pairs:
+            _push_pair(a, b, nx, ny)
 
     def ray(self, x: float, y: float, direction: float, max_cm: float, group: int) -> float | None:
         """Distance from (x, y) along direction to the first wall or other robot, if within max_cm."""
@@ -163,3 +220,43 @@ class Physics:
     def near(self, x: float, y: float, reach_cm: float, group: int) -> bool:
         """Whether a wall or another robot is within reach_cm of (x, y)."""
         return self.space.point_query_nearest((x, y), reach_cm, self._filters[group]) is not None
+
+
+def _push_pair(a: RobotBody, b: RobotBody, nx: float, ny: float) -> None:
+    """Robots a and b touch, n = (nx, ny) pointing from a to b: set how fast both move along n.
+
+    Along n each robot is a motor: one that drives toward the other at free speed s with power P
+    pushes with P * (1 - v / s) at speed v; one that does not resists with what its wheels hold (a
+    stopped motor's HOLD_PCT/BRAKE_PCT/COAST_PCT, a driving one's power) and moves only when pushed
+    harder.  Both pushing: they move where their forces balance, v = (Pa - Pb) / (Pa/sa + Pb/sb)
+    (equal pushes stall each other).  The parts across n are each robot's own."""
+    avx, avy = a.velocity()
+    bvx, bvy = b.velocity()
+    sa = avx * nx + avy * ny  # a's speed toward b
+    sb = -(bvx * nx + bvy * ny)  # b's speed toward a
+    if sa + sb <= 0.0:
+        return  # they part (or one follows the other no faster than it goes)
+    pa, pb = a.push_pct, b.push_pct
+    if sa > 0.0 and sb > 0.0:
+        weight = pa / sa + pb / sb
+        v = (pa - pb) / weight if weight > 0.0 else 0.0
+    elif sa > 0.0:  # b does not drive toward a: it holds, or goes away slower than a comes
+        hold = b.hold_pct + pb
+        v = max(-sb, sa * (1.0 - hold / pa) if pa > hold else 0.0)
+    else:
+        hold = a.hold_pct + pa
+        v = -max(-sa, sb * (1.0 - hold / pb) if pb > hold else 0.0)
+    avx, avy = avx + (v - sa) * nx, avy + (v - sa) * ny
+    bvx, bvy = bvx + (v + sb) * nx, bvy + (v + sb) * ny
+    if a.touching:  # a pushed back into a wall stops there
+        avx, avy = a._unblocked(avx, avy)
+    if b.touching:
+        bvx, bvy = b._unblocked(bvx, bvy)
+    va, vb = avx * nx + avy * ny, bvx * nx + bvy * ny
+    if va > vb + 1e-9:  # one of them is held by a wall: the other cannot go through it
+        if vb < v - 1e-9:  # b is blocked: a stops with it
+            avx, avy = avx + (vb - va) * nx, avy + (vb - va) * ny
+        else:  # a is blocked: b goes no faster toward a
+            bvx, bvy = bvx + (va - vb) * nx, bvy + (va - vb) * ny
+    a.set_velocity(avx, avy)
+    b.set_velocity(bvx, bvy)

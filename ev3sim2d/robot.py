@@ -4,7 +4,9 @@ Each tick the wheel motors plan how far they turn; the robot turns that into
 a body velocity (infinite acceleration), the physics moves it, and the
 encoders count how far each wheel really went: the forward travel of the
 point where the wheel touches the floor.  A robot held by a wall therefore
-sees its encoders stop, and its motors report stalled.
+sees its encoders stop, and its motors report stalled.  While it touches another
+robot it also says how hard its wheels push and hold (physics.py settles the
+push), so a robot pushed back counts its wheels turning back.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from .devices.color import ColorSensor
 from .devices.motor import TachoMotor
 from .devices.registry import SENSORS
 from .devices.touch import DEFAULT_BUMPER_CM
-from .physics import Physics
+from .physics import BRAKE_PCT, COAST_PCT, HOLD_PCT, Physics
 from .world.pose import Pose
 from .world.robot_spec import RobotSpec
 
@@ -111,8 +113,25 @@ class Robot:
         left_cm = left * self.left_mount * self.cm_per_deg
         right_cm = right * self.right_mount * self.cm_per_deg
         turn = (right_cm - left_cm) / self.track_cm
+        if self.body.robots_touching:
+            self._push_and_hold(left, right, dt)
         # velocity along the mid-step heading: arcs come out right to second order
         self.body.drive((left_cm + right_cm) / 2 / dt, self.heading_rad + turn / 2, turn / dt)
+
+    def _push_and_hold(self, left: float, right: float, dt: float) -> None:
+        """How hard the wheels push (a driven wheel motor: the power it runs at, % of its full
+        speed) and hold (a stopped one: by its stop action), for physics' push between robots."""
+        push = hold = 0.0
+        for motor, planned in ((self.left, left), (self.right, right)):
+            if motor.mode == "coast":  # rolling out: only the gears' friction
+                hold += COAST_PCT
+            elif planned:
+                push += 100.0 * abs(planned) / (motor.max_speed * dt)
+            elif motor.mode == "stopped":
+                hold += {"hold": HOLD_PCT, "brake": BRAKE_PCT}.get(motor.stop_action, COAST_PCT)
+            else:  # driven at speed 0: the speed PID holds it
+                hold += HOLD_PCT
+        self.body.push_pct, self.body.hold_pct = push, hold
 
     def after_step(self, dt: float) -> None:
         """Read back where the body went; the encoders count each wheel's real forward travel."""

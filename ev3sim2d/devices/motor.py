@@ -389,9 +389,10 @@ class TachoMotor(Device):
                 self._lag_s = 0.0
                 self._stop()  # ramps down first if ramp_down_sp is set (run_timed_work)
                 return
-        # stall: a shaft that keeps turning much less than planned (or not at all, at speed 0);
-        # the driver reports stalled after TACHO_MOTOR_STALLED_MS of no motion (update_stall)
-        if abs(turned) > STALL_RATIO * abs(planned) + 1e-9:
+        # stall: a shaft that keeps turning much less than planned (or not at all, at speed 0), or
+        # backwards (a robot pushed back by another); the driver reports stalled after
+        # TACHO_MOTOR_STALLED_MS of no motion (update_stall)
+        if abs(turned) > STALL_RATIO * abs(planned) + 1e-9 and turned * planned >= 0.0:
             if self._lag_s:  # the PID's pushing ends with the lag
                 self._lag_s = self._error_sum = self._lag_duty = 0.0
             self.state_bits = RUNNING | ramp_bit
