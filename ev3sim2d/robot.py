@@ -7,6 +7,9 @@ point where the wheel touches the floor.  A robot held by a wall therefore
 sees its encoders stop, and its motors report stalled.  While it touches another
 robot it also says how hard its wheels push and hold (physics.py settles the
 push), so a robot pushed back counts its wheels turning back.
+
+Its sound sensor hears the other robots' speakers (`sound_level`): each robot
+knows the others (`others`, set by the Simulation) and its speaker's volume.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import math
 from .devices.brick import Brick
 from .devices.color import ColorSensor
 from .devices.motor import TachoMotor
+from .devices.nxt_sound import QUIET_PCT, SOUND_REF_CM, SPEAKER_PCT
 from .devices.registry import SENSORS
 from .devices.touch import DEFAULT_BUMPER_CM
 from .physics import BRAKE_PCT, COAST_PCT, HOLD_PCT, Physics
@@ -53,6 +57,8 @@ class Robot:
         self.rng = rng
         self.tick = 0
         self.sound_until_tick = 0  # the brick's speaker plays until this tick
+        self.sound_volume = 100.0  # its speaker's volume, % (the Simulation follows the brick's sounds)
+        self.others: list[Robot] = []  # the other robots in the world, whose sounds it hears
         heading = math.radians(start.heading_deg)
         self.body = physics.add_robot(body_outline(spec), start.x_cm, start.y_cm, heading)
         self.group = self.body.group
@@ -97,6 +103,20 @@ class Robot:
 
     def touches_segment(self, x0: float, y0: float, x1: float, y1: float, reach_cm: float) -> bool:
         return self.physics.touches_segment(x0, y0, x1, y1, reach_cm, self.group)
+
+    def sounding(self) -> bool:
+        """Whether the brick's speaker plays now."""
+        return self.sound_until_tick > self.tick
+
+    def sound_level(self, x: float, y: float) -> float:
+        """The sound level (%) at (x, y) on this robot: the quiet room or its own speaker, plus each
+        other robot's speaker playing, by the inverse square of the distance to it."""
+        level = SPEAKER_PCT if self.sounding() else QUIET_PCT
+        for other in self.others:
+            if other.sounding():
+                d2 = max((other.x - x) ** 2 + (other.y - y) ** 2, SOUND_REF_CM**2)
+                level += SPEAKER_PCT * other.sound_volume / 100.0 * SOUND_REF_CM**2 / d2
+        return min(level, 100.0)
 
     def driving(self) -> bool:
         """Whether the wheel motors are still being driven (they keep going after a program ends)."""

@@ -76,6 +76,10 @@ class Simulation:
                     f"{robot.name} starts at x={p.x_cm:g} cm, y={p.y_cm:g} cm, heading {p.heading_deg:g}° "
                     f"with its body inside a wall; move the start further from the walls"
                 )
+        if len(self.robots) > 1:  # each hears the others' speakers
+            for robot in self.robots:
+                robot.others = [r for r in self.robots if r is not robot]
+        self._sounds_seen = 0  # the trace's events already looked at for the speakers' volumes
         self.ticks = 0
         self.trace = Trace(
             tick_s=self.dt,
@@ -143,6 +147,8 @@ class Simulation:
                     motor.speed_dps * motor.sign,
                     motor.state_bits,
                 )
+        if len(self.trace.events) > self._sounds_seen and len(self.robots) > 1:
+            self._follow_volumes()
         t = now_us / 1e6
         self.trace.add_tick(t, row)
         self.ticks += 1
@@ -150,6 +156,18 @@ class Simulation:
             for robot in self.robots:
                 for sensor in robot.sensors.values():
                     sensor.values()  # measured (and so recorded) unless the program did this tick
+
+    def _follow_volumes(self) -> None:
+        """Each robot's speaker volume, from its brick's sound events since the last tick (set_volume
+        sets it; a sound with a volume of its own plays at that), for the others' sound sensors."""
+        events = self.trace.events
+        for _, index, kind, data in events[self._sounds_seen :]:
+            if kind != "sound" or not 0 <= index < len(self.robots):
+                continue
+            volume = data.get("pct") if data.get("kind") == "set_volume" else data.get("volume")
+            if volume is not None:
+                self.robots[index].sound_volume = float(volume)
+        self._sounds_seen = len(events)
 
     def motor_states(self, robot: Robot) -> dict[str, str]:
         return {port: state_text(m.state_bits) for port, m in robot.motors.items()}
