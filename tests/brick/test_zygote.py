@@ -137,3 +137,61 @@ def test_a_class_run_starts_python_once_for_its_bricks(tmp_path):
         brick_process.subprocess.Popen = real_popen
     assert result.score == result.max_score
     assert len(started) == 1 and "zygote" in started[0]  # three bricks, one Python started
+
+
+HIJACK = """\
+import gc, json, os, select, socket
+forged = json.dumps({"scratch": "/", "memory": False, "cpus": []}).encode()
+candidates = [fd for fd in range(1024)]
+for obj in gc.get_objects():  # the zygote's own objects live on in a forked brick's memory
+    if isinstance(obj, socket.socket):
+        try:
+            candidates.append(obj.fileno())
+        except OSError:
+            pass
+sent = answered = 0
+for fd in sorted(set(candidates)):
+    try:
+        s = socket.socket(fileno=os.dup(fd))
+    except OSError:
+        continue
+    mine, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+    try:
+        socket.send_fds(s, [forged], [theirs.fileno(), 1, theirs.fileno()])
+        sent += 1
+    except OSError:
+        pass
+    if select.select([mine], [], [], 0.05)[0]:
+        answered += 1
+print("sent", sent, "answered", answered)
+"""
+
+
+def _children(pid: int) -> set[int]:
+    found = set()
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat", "rb") as f:
+                    stat = f.read().decode("latin-1")
+            except OSError:
+                continue
+            if int(stat[stat.rfind(")") + 2 :].split()[1]) == pid:
+                found.add(int(entry))
+    return found
+
+
+def test_a_brick_cannot_ask_the_zygote_for_a_brick_of_its_own(zygote, tmp_path):
+    """A student who knows the zygote forks bricks from requests on a socket tries every descriptor,
+    and every socket object the zygote left in its forked memory, to ask for a brick whose welcome
+    it would write itself (no sandbox).  The zygote's socket is not among them: nothing answers,
+    and the zygote forks nothing for it."""
+    program = tmp_path / "hijack.py"
+    program.write_text(HIJACK)
+    before = _children(zygote.pid)
+    result = run_programs([program], load_maze(find_maze("empty")), time_limit_s=5, zygote=zygote)
+    assert result.status == "finished", result.reason
+    printed = [line.text for line in result.trace.output]
+    assert printed and printed[-1].endswith("answered 0"), printed
+    time.sleep(0.2)
+    assert _children(zygote.pid) <= before  # no brick left behind, none forked for the student
