@@ -21,13 +21,12 @@ import os
 import resource
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-IN_PROCESS_COMMIT = "f72c7f3"
+from old_code import IN_PROCESS_COMMIT, old_code
+
 # run `python -m ev3sim2d` from the old code on PYTHONPATH, not today's editable install
 OLD_MAIN = (
     "import sys, runpy; "
@@ -93,22 +92,6 @@ def grade_class(
     if done.returncode != 0 or not results.is_file():
         raise RuntimeError(f"grading failed:\n{done.stdout}\n{done.stderr}")
     return wall, cpu, json.loads(results.read_text())
-
-
-def old_code(into: Path) -> Path | None:
-    """The source tree of IN_PROCESS_COMMIT, or None without the git history."""
-    archive = into / "code.tar"
-    made = subprocess.run(
-        ["git", "-C", str(ROOT), "archive", "-o", str(archive), IN_PROCESS_COMMIT],
-        capture_output=True,
-        text=True,
-    )
-    if made.returncode != 0:
-        print(f"(baseline skipped: git archive {IN_PROCESS_COMMIT} failed: {made.stderr.strip()})")
-        return None
-    with tarfile.open(archive) as tar:
-        tar.extractall(into / "code", filter="data")
-    return into / "code"
 
 
 def main() -> int:

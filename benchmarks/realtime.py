@@ -8,7 +8,7 @@
     program, brick, protocol, simulator and world;
 (c) the same program in the brick process without the sandbox (what the sandbox costs);
 (d) the same program run the way ev3sim2d ran it before bricks existed, in the simulator's own
-    process (the code of commit IN_PROCESS_COMMIT, taken from git), for the ratio (b)/(d).
+    process (the code of commit old_code.IN_PROCESS_COMMIT, taken from git), for the ratio (b)/(d).
 
 Target: (b) at least 300x real time.  Each figure is the best of --repeat runs; the machine is
 shared, so the figures move with its load: compare the ratios of one run.
@@ -21,17 +21,17 @@ import argparse
 import os
 import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 from pathlib import Path
+
+from old_code import old_code
 
 from ev3sim2d.run import run_programs
 from ev3sim2d.simulation import Simulation
 from ev3sim2d.world.maze_file import find_maze, load_maze
 
 ROOT = Path(__file__).resolve().parents[1]
-IN_PROCESS_COMMIT = "f72c7f3"  # the last commit that ran programs inside the simulator's process
 FOLLOWER = ROOT / "examples" / "line_follower.py"
 
 IN_PROCESS_RUN = """
@@ -80,22 +80,14 @@ def line_follower(world, seconds: float, sandbox: bool = True) -> float:
 
 def in_process(seconds: float, repeat: int) -> float | None:
     """The line follower as ev3sim2d ran it before bricks (from git); None without the history."""
-    with tempfile.TemporaryDirectory(prefix="ev3sim2d-in-process-") as folder:
-        archive = Path(folder) / "code.tar"
-        made = subprocess.run(
-            ["git", "-C", str(ROOT), "archive", "-o", str(archive), IN_PROCESS_COMMIT],
-            capture_output=True,
-            text=True,
-        )
-        if made.returncode != 0:
-            print(f"(d) skipped: git archive {IN_PROCESS_COMMIT} failed: {made.stderr.strip()}")
+    with tempfile.TemporaryDirectory(prefix="ev3sim2d-in-process-") as scratch:
+        tree = old_code(Path(scratch))
+        if tree is None:
             return None
-        with tarfile.open(archive) as tar:
-            tar.extractall(folder, filter="data")
-        code = IN_PROCESS_RUN.format(repeat=repeat, program=str(FOLLOWER), seconds=seconds, folder=folder)
-        env = {**os.environ, "PYTHONPATH": folder, "PYTHONHASHSEED": "0"}
+        code = IN_PROCESS_RUN.format(repeat=repeat, program=str(FOLLOWER), seconds=seconds, folder=str(tree))
+        env = {**os.environ, "PYTHONPATH": str(tree), "PYTHONHASHSEED": "0"}
         ran = subprocess.run(
-            [sys.executable, "-c", code], cwd=folder, env=env, capture_output=True, text=True, timeout=900
+            [sys.executable, "-c", code], cwd=tree, env=env, capture_output=True, text=True, timeout=900
         )
         if ran.returncode != 0:
             print(f"(d) failed: {ran.stderr.strip()[-500:]}")
