@@ -17,7 +17,7 @@ import pytest
 from ev3sim2d.physics import WALL_FRICTION
 from ev3sim2d.simulation import Simulation
 from ev3sim2d.world.robot_spec import parse_robot
-from tests.inline_world import arena
+from tests.inline_world import arena, two_wheel_robot
 
 TICK_S = 0.01
 
@@ -87,17 +87,9 @@ def test_a_bare_button_presses_only_at_its_tip():
     """bumper_cm: 2 (the default) is the sensor's own button: a wall meeting the robot's corner first
     does not reach it."""
     spec = parse_robot(
-        """
-name: narrow bumper
-wheel_diameter_mm: 56
-axle_track_mm: 120
-body: {front_cm: 9, back_cm: 7, width_cm: 15}
-motors:
-  - {port: B, kind: large, wheel: left}
-  - {port: C, kind: large, wheel: right}
-sensors:
-  - {port: 1, kind: touch, angle_deg: 0, radius_cm: 9, facing: forward}
-""",
+        two_wheel_robot(
+            "narrow bumper", "{port: 1, kind: touch, angle_deg: 0, radius_cm: 9, facing: forward}"
+        ),
         "<narrow bumper>",
     )
     sim = _sim(190, 120, 60, robot=spec)

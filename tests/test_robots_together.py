@@ -16,7 +16,7 @@ import pytest
 
 from ev3sim2d.run import run_programs
 from ev3sim2d.world.robot_spec import load_robot
-from tests.inline_world import arena
+from tests.inline_world import arena, two_wheel_robot
 
 HEAD_ON = "- {x_cm: 80, y_cm: 120, heading_deg: 0}\n  - {x_cm: 110, y_cm: 120, heading_deg: 180}"
 
@@ -168,17 +168,7 @@ def test_a_touch_bumper_is_pressed_by_the_other_robot(tmp_path):
     assert abs(result.trace.poses(0)[-1][0] + 9 - 92.5) < 1.5
 
 
-SOUND_ROBOT = """
-name: listener
-wheel_diameter_mm: 56
-axle_track_mm: 120
-body: {front_cm: 9, back_cm: 7, width_cm: 15}
-motors:
-  - {port: B, kind: large, wheel: left}
-  - {port: C, kind: large, wheel: right}
-sensors:
-  - {port: 2, kind: nxt-sound, angle_deg: 180, radius_cm: 3}
-"""
+SOUND_ROBOT = two_wheel_robot("listener", "{port: 2, kind: nxt-sound, angle_deg: 180, radius_cm: 3}")
 
 LISTENER = """
     import time

@@ -1,7 +1,7 @@
 """Sensors read the world: colour under the spot, distance ahead, bumper, noise."""
 
 from ev3sim2d.simulation import Simulation
-from tests.inline_world import arena
+from tests.inline_world import arena, two_wheel_robot
 
 # a 12 cm grid with one black column (col 5: x 60..72) on white floor
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18
@@ -89,18 +89,11 @@ def test_noise_is_reproducible_with_the_same_seed_and_differs_with_another(tmp_p
     assert 70 <= sum(a) / len(a) <= 80
 
 
-NXT_ROBOT = """
-name: NXT sensors
-wheel_diameter_mm: 56
-axle_track_mm: 120
-body: {front_cm: 9, back_cm: 7, width_cm: 15}
-motors:
-  - {port: B, kind: large, wheel: left}
-  - {port: C, kind: large, wheel: right}
-sensors:
-  - {port: 1, kind: nxt-light, angle_deg: 0, radius_cm: 7}
-  - {port: 2, kind: nxt-sound, angle_deg: 180, radius_cm: 3}
-"""
+NXT_ROBOT = two_wheel_robot(
+    "NXT sensors",
+    "{port: 1, kind: nxt-light, angle_deg: 0, radius_cm: 7}",
+    "{port: 2, kind: nxt-sound, angle_deg: 180, radius_cm: 3}",
+)
 
 
 def test_nxt_light_and_sound_sensors_work_where_the_robot_has_them(run, tmp_path):
