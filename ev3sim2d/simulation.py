@@ -140,7 +140,14 @@ class Simulation:
         row = []
         for robot in self.robots:
             robot.after_step(dt)
-            row += (robot.x, robot.y, robot.heading_rad * DEGREES, 1.0 if robot.body.touching else 0.0)
+            body = robot.body
+            row += (
+                robot.x,
+                robot.y,
+                robot.heading_rad * DEGREES,
+                1.0 if body.touching else 0.0,
+                1.0 if body.robots_touching else 0.0,
+            )
             for motor in robot.motors.values():
                 row += (
                     motor.shaft_deg * motor.sign + motor.offset,

@@ -19,8 +19,10 @@ import numpy as np
 
 FORMAT = "ev3sim2d-trace-1"
 
-# columns of one robot in the motion table
-POSE_COLUMNS = ("x_cm", "y_cm", "heading_deg", "touching")
+# columns of one robot in the motion table: its pose, whether its body touches a wall, and whether it
+# touches another robot
+POSE_COLUMNS = ("x_cm", "y_cm", "heading_deg", "touching", "touching_robot")
+OLD_POSE_COLUMNS = 4  # traces saved before "touching_robot" was recorded: loaded with it 0 throughout
 MOTOR_COLUMNS = ("position", "speed", "state")
 
 
@@ -81,7 +83,8 @@ class Trace:
 
     # -------------------------------------------------------------- reading
     def motion(self) -> np.ndarray:
-        """ticks × columns: for each robot, x, y, heading, touching, then position/speed/state per motor."""
+        """ticks × columns: for each robot, x, y, heading, touching (a wall), touching_robot, then
+        position/speed/state per motor."""
         return np.frombuffer(self.values, dtype=float).reshape(len(self.times), self.width).copy()
 
     def robot_columns(self, index: int) -> slice:
@@ -138,6 +141,22 @@ class Trace:
                 meta=np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8),
             )
 
+    def _current_columns(self, motion: np.ndarray) -> np.ndarray:
+        """A saved motion table in today's columns: one saved before robot contacts were recorded gets
+        a `touching_robot` column of zeros (nothing said it touched a robot) after each robot's `touching`."""
+        if motion.ndim != 2 or motion.shape[1] == self.width:
+            return motion
+        old_widths = [OLD_POSE_COLUMNS + len(MOTOR_COLUMNS) * len(r["motors"]) for r in self.robots]
+        if motion.shape[1] != sum(old_widths):
+            raise ValueError(f"a trace of {motion.shape[1]} columns for robots needing {self.width}")
+        parts, start = [], 0
+        for width in old_widths:
+            block = motion[:, start : start + width]
+            zeros = np.zeros((len(motion), len(POSE_COLUMNS) - OLD_POSE_COLUMNS))
+            parts += [block[:, :OLD_POSE_COLUMNS], zeros, block[:, OLD_POSE_COLUMNS:]]
+            start += width
+        return np.hstack(parts)
+
     @classmethod
     def load(cls, path: str | Path) -> Trace:
         with np.load(path) as data:
@@ -146,7 +165,7 @@ class Trace:
                 raise ValueError(f"{path}: not an ev3sim2d trace (format {meta.get('format')!r})")
             trace = cls(meta["tick_s"], meta["robots"], meta["world"], meta["seed"])
             trace.times = array("d", data["times"].tolist())
-            trace.values = array("d", data["motion"].ravel().tolist())
+            trace.values = array("d", trace._current_columns(data["motion"]).ravel().tolist())
             trace.lcd_frames = [frame.tobytes() for frame in data["lcd"]]
         trace.sensor_samples = meta["sensor_samples"]
         trace.output = [OutputLine(**o) for o in meta["output"]]

@@ -1,6 +1,6 @@
 """The trace: what a run recorded, saved and loaded back unchanged."""
 
-from ev3sim2d.trace import Trace
+from ev3sim2d.trace import POSE_COLUMNS, Trace
 
 
 def test_a_saved_trace_loads_back_with_the_same_fingerprint(run, tmp_path):
@@ -30,7 +30,7 @@ def test_every_tick_is_recorded_with_poses_and_motor_states(run):
     motion = trace.motion()
     assert motion.shape == (len(trace.times), trace.width)
     ports = [port for port, _ in trace.robots[0]["motors"]]
-    state = motion[:, 4 + 3 * ports.index("outB") + 2]
+    state = motion[:, len(POSE_COLUMNS) + 3 * ports.index("outB") + 2]
     assert (state == 1).sum() > 40  # running (and nothing else) for most of the half second
     assert state[-1] == 4  # holding at the end (brake=True)
 
@@ -93,3 +93,62 @@ def test_the_motors_state_at_the_end_is_kept_even_after_the_last_tick(run):
         MoveTank(OUTPUT_B, OUTPUT_C).on(30, 30)
     """)
     assert running.trace.end_motors[0]["driving"] is True
+
+
+TWO_ROBOTS = "- {x_cm: 60, y_cm: 120, heading_deg: 0}\n  - {x_cm: 120, y_cm: 120, heading_deg: 0}"
+DRIVE = """
+from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C
+MoveTank(OUTPUT_B, OUTPUT_C).on_for_seconds(50, 50, {seconds})
+"""
+
+
+def _two_robots(tmp_path, first_drives_s: float):
+    from ev3sim2d.run import run_programs
+    from tests.inline_world import arena
+
+    paths = [tmp_path / "behind.py", tmp_path / "ahead.py"]
+    paths[0].write_text(DRIVE.format(seconds=first_drives_s))
+    paths[1].write_text("import time\ntime.sleep(3)\n")
+    return run_programs(paths, arena(start=TWO_ROBOTS), time_limit_s=10, hang_after_s=5.0)
+
+
+def _column(trace: Trace, robot: int, name: str):
+    return trace.motion()[:, trace.robot_columns(robot)][:, POSE_COLUMNS.index(name)]
+
+
+def test_a_robot_touching_another_is_recorded_for_both_and_not_as_a_wall(tmp_path):
+    result = _two_robots(tmp_path, first_drives_s=3)  # 60 cm apart, 16 cm of bodies: it runs into the other
+    trace = result.trace
+    for robot in (0, 1):
+        assert _column(trace, robot, "touching_robot").any()
+        assert not _column(trace, robot, "touching").any()
+    first = trace.times[int(_column(trace, 0, "touching_robot").argmax())]
+    assert 1.0 < first < 3.0  # (60 - 16) cm at about 26 cm/s
+
+
+def test_robots_that_keep_apart_never_touch(tmp_path):
+    result = _two_robots(tmp_path, first_drives_s=0.5)
+    assert not _column(result.trace, 0, "touching_robot").any()
+
+
+def test_a_trace_saved_before_robot_contacts_were_recorded_still_loads(run, tmp_path):
+    import json
+
+    import numpy as np
+
+    result = run("""
+        from ev3dev2.motor import MoveTank, OUTPUT_B, OUTPUT_C
+        MoveTank(OUTPUT_B, OUTPUT_C).on_for_seconds(30, 30, 0.5)
+    """)
+    path = tmp_path / "new.npz"
+    result.trace.save(path)
+    old = tmp_path / "old.npz"
+    with np.load(path) as data:  # the same file as an older ev3sim2d wrote it: no touching_robot column
+        parts = dict(data)
+    column = POSE_COLUMNS.index("touching_robot")
+    parts["motion"] = np.delete(parts["motion"], column, axis=1)
+    json.loads(bytes(parts["meta"]).decode())  # (the meta is unchanged)
+    np.savez_compressed(old, **parts)
+    loaded = Trace.load(old)
+    assert (loaded.motion() == result.trace.motion()).all()
+    assert loaded.fingerprint() == result.trace.fingerprint()
