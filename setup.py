@@ -3,7 +3,8 @@
 The repository keeps `mazes/` and the `ev3dev2/` shim at its top level (for people to find and
 edit). Installing them as top-level packages would shadow a real python-ev3dev2, so a wheel gets
 them inside ev3sim2d instead, as `ev3sim2d/_mazes/`, `_lessons/` and `_shim/ev3dev2/`, where only a
-simulated run looks. An editable install reads them from the repository directly.
+simulated run looks; the example programs go in as `ev3sim2d/_examples/`, for `ev3sim2d examples` to
+copy out. An editable install reads them from the repository directly.
 
 A wheel is what students install, so its lessons are what students may read: each lesson's `hidden/`
 folder (the hidden variants and their worlds), its reference `solution.py` and its deliberately wrong
@@ -34,6 +35,10 @@ class BuildWithWorldsAndShim(build_py):
             target / "_lessons",
             dirs_exist_ok=True,
             ignore=shutil.ignore_patterns(*NOT_SHIPPED_FROM_LESSONS),
+        )
+        shutil.rmtree(target / "_examples", ignore_errors=True)
+        shutil.copytree(
+            ROOT / "examples", target / "_examples", ignore=shutil.ignore_patterns("__pycache__", "*.pyc")
         )
         shutil.copytree(
             ROOT / "ev3dev2",
