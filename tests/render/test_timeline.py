@@ -16,7 +16,7 @@ ROBOT = {
 def tiny_trace():
     trace = Trace(0.01, [ROBOT], {"name": "t", "title": "t", "text": ""}, 0)
     for k in range(1, 4):  # ticks ending at 0.01, 0.02, 0.03 s
-        trace.add_tick(k / 100, [10.0 + k, 20.0, 0.0, 0.0, 36.0 * k, 360.0, 1])
+        trace.add_tick(k / 100, [10.0 + k, 20.0, 0.0, 0.0, 0.0, 36.0 * k, 360.0, 1])  # pose, contacts, motor
     return trace
 
 
