@@ -12,6 +12,10 @@ A check is either one of the lesson's goal checks (`goal: true`: the task itself
 or a secondary one (stopped, no wall contact, finished, ...), which counts only once
 every goal check of the variant passes (see scoring.py).  A kind that a robot
 standing still passes (`PASSES_WITHOUT_MOVING`) cannot be a goal.
+
+In a lesson with several robots a check may name the robot it looks at (`robot: pacer`,
+one of the lesson's `others`); by default it looks at the student's.  A check of another
+robot is never a goal: the goal is the student's task.
 """
 
 from __future__ import annotations
@@ -25,9 +29,10 @@ from ..world.source_error import WorldFileError
 from ..world.world import World
 from ..world.yaml_source import Node
 from .run_record import RunRecord
+from .variant import STUDENT
 
 REQUIRED: Any = object()
-COMMON_KEYS = ("kind", "name", "points", "goal")
+COMMON_KEYS = ("kind", "name", "points", "goal", "robot")
 
 
 @dataclass(frozen=True)
@@ -138,10 +143,12 @@ class Check:
         values: dict[str, Any],
         nodes: dict[str, Node] | None = None,
         goal: bool = False,
+        robot: str | None = None,
     ):
         self.name = name
         self.points = points
         self.goal = goal  # a goal check: the others count only once every goal check passes
+        self.robot = robot  # the robot it looks at, by name (None: the student's)
         self.values = values
         self.nodes = nodes or {}  # where each parameter was written, for errors found later
         for key, value in values.items():
@@ -149,7 +156,8 @@ class Check:
 
     def __repr__(self) -> str:
         goal = ", goal" if self.goal else ""
-        return f"{type(self).__name__}({self.name!r}, {self.points:g} points{goal}, {self.values})"
+        robot = f", robot {self.robot}" if self.robot else ""
+        return f"{type(self).__name__}({self.name!r}, {self.points:g} points{goal}{robot}, {self.values})"
 
     def passes_without_moving(self) -> bool:
         """Whether a robot that stands still where it starts passes this check (then it cannot be a goal)."""
@@ -162,7 +170,14 @@ class Check:
         return "passed" if outcome.passed else f"did not pass ({self.SUMMARY or self.KIND})"
 
     @classmethod
-    def build(cls, name: str | None = None, points: float = 1, goal: bool = False, **values: Any) -> Check:
+    def build(
+        cls,
+        name: str | None = None,
+        points: float = 1,
+        goal: bool = False,
+        robot: str | None = None,
+        **values: Any,
+    ) -> Check:
         """A check made in code (tests, custom checks): parameters by keyword, defaults filled in."""
         known = {p.name: p for p in cls.PARAMS}
         for key in values:
@@ -176,7 +191,7 @@ class Check:
                 raise TypeError(f"{cls.KIND} needs the parameter {param.name!r}")
             else:
                 full[param.name] = param.default
-        return cls(name or cls.KIND, points, full, goal=goal)
+        return cls(name or cls.KIND, points, full, goal=goal, robot=robot)
 
     def validate(self, world: World, variant: str) -> None:
         """Refuse parameters the world cannot answer (a region it does not have); called for every variant."""
@@ -250,6 +265,10 @@ def check_from_node(node: Node, kinds: dict[str, type[Check]], index: int) -> Ch
     goal = fields.boolean("goal", default=False)
     values: dict[str, Any] = {}
     nodes: dict[str, Node] = {}
+    robot = None  # the student's
+    if "robot" in fields:  # which robot of the run it looks at (checked against each variant's robots later)
+        nodes["robot"] = fields.get("robot")
+        robot = fields.text("robot", example="robot: pacer").strip() or None
     for param in cls.PARAMS:
         value_node = fields.get(param.name)
         if value_node is None or value_node.is_null:
@@ -262,7 +281,12 @@ def check_from_node(node: Node, kinds: dict[str, type[Check]], index: int) -> Ch
             continue
         values[param.name] = param.value_of(value_node)
         nodes[param.name] = value_node
-    check = cls(name, points, values, nodes, goal=goal)
+    check = cls(name, points, values, nodes, goal=goal, robot=robot)
+    if goal and robot not in (None, STUDENT):
+        raise fields.get("goal").error(
+            f"check '{name}' looks at the robot '{robot}', not the student's: it cannot be a goal, which is "
+            "the student's task; leave it a secondary check"
+        )
     if goal and check.passes_without_moving():
         raise fields.get("goal").error(
             f"check '{name}' ({kind}) passes for a robot that never moves, so it cannot be a goal: "

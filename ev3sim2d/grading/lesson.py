@@ -26,7 +26,7 @@ from ..simulation import Simulation, StartBlocked
 from ..world.source_error import WorldFileError
 from ..world.yaml_source import Fields, Node, load_yaml_text, read_text_file
 from .check import COMMON_KEYS, Check, builtin_checks, checks_from_node
-from .variant import Variant, read_robot, variant_from_node
+from .variant import STUDENT, OtherRobot, Variant, read_others, read_robot, variant_from_node
 
 LESSON_FILE = "lesson.yaml"
 HIDDEN_DIR = "hidden"  # lessons/<id>/hidden/: the hidden variants and their worlds, never in a wheel
@@ -43,6 +43,8 @@ LESSON_KEYS = (
     "checks",
     "starter",
     "solution",
+    "student_start",
+    "others",
 )
 LIMIT_KEYS = ("wall_s", "cpu_s", "memory_mb", "hang_s", "output_mb")
 GRADER_VERSION = (
@@ -87,6 +89,15 @@ class Lesson:
     text: str = ""
     hidden_file: Path | None = None  # where the hidden variants came from (None: no hidden variants)
     hidden_text: str = ""
+    student_start: int = 1  # the world's start pose the student's robot takes
+    others: list[OtherRobot] = field(
+        default_factory=list
+    )  # the lesson's own robots (a variant may change them)
+
+    @property
+    def several_robots(self) -> bool:
+        """Whether any variant's runs have robots besides the student's."""
+        return any(variant.others for variant in self.variants)
 
     @property
     def source(self) -> Path:
@@ -128,6 +139,9 @@ class Lesson:
         for path in sorted(self.folder.glob("check_*.py")):
             h.update(path.read_bytes())
         for variant in self.variants:
+            for other in variant.others:  # the lesson's own programs decide a score too
+                h.update(f"{other.name}:{other.start}:".encode())
+                h.update(other.program.read_bytes())
             world = variant.world()
             h.update((world.text or "").encode())
             h.update(repr(dataclasses.replace(world.robot, source=None)).encode())
@@ -219,6 +233,13 @@ def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> L
     seed = fields.integer("seed", default=0, example="seed: 0")
     robot = read_robot(fields.get("robot"), folder) if "robot" in fields else None
     limits = _limits(fields.get("limits")) if "limits" in fields else Limits()
+    student_start = fields.integer("student_start", default=1, example="student_start: 2")
+    if student_start < 1:
+        raise fields.get("student_start").error(
+            f"'student_start' is the number of a start pose of the worlds (1 is the first), got {student_start}"
+        )
+    others = read_others(fields.get("others"), folder, student_start) if "others" in fields else []
+    several = (student_start, others)
 
     variants_node = fields.require("variants", "variants: [{name: basic, world: maze}]")
     items = variants_node.as_list("variants", "variants: [{name: basic, world: maze}]")
@@ -226,7 +247,7 @@ def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> L
         raise variants_node.error("a lesson needs at least one variant; e.g. `- {name: basic, world: maze}`")
     variants: list[Variant] = []
     for item in items:
-        _add_variant(variants, *variant_from_node(item, folder, time_s, seed, robot))
+        _add_variant(variants, *variant_from_node(item, folder, time_s, seed, robot, False, *several))
 
     hidden_file = find_hidden(folder, hidden)
     hidden_text = ""
@@ -234,7 +255,7 @@ def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> L
         hidden_text = read_text_file(hidden_file)
         for item in _hidden_items(hidden_text, hidden_file):
             variant, vfields = variant_from_node(
-                item, [hidden_file.parent, folder], time_s, seed, robot, hidden=True
+                item, [hidden_file.parent, folder], time_s, seed, robot, True, *several
             )
             variant.hidden_number = sum(v.hidden for v in variants) + 1
             _add_variant(variants, variant, vfields)
@@ -247,6 +268,7 @@ def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> L
         world = variant.world()
         for check in checks:
             check.validate(world, variant.name)
+            _check_robot(check, variant)
 
     return Lesson(
         id=folder.name,
@@ -262,7 +284,24 @@ def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> L
         text=text,
         hidden_file=hidden_file,
         hidden_text=hidden_text,
+        student_start=student_start,
+        others=others,
     )
+
+
+def _check_robot(check: Check, variant: Variant) -> None:
+    """A check's `robot:` names a robot of every variant's runs."""
+    if check.robot is None or check.robot in variant.robot_names:
+        return
+    node = check.nodes.get("robot")
+    message = (
+        f"check '{check.name}' looks at robot '{check.robot}', but variant '{variant.name}' has only "
+        f"{', '.join(variant.robot_names)}; name one of them (`{STUDENT}`, the default, is the student's "
+        "robot; the others are named in `others:`)"
+    )
+    if node is None:
+        raise ValueError(message)
+    raise node.error(message)
 
 
 def _add_variant(variants: list[Variant], variant: Variant, fields: Fields) -> None:
@@ -288,10 +327,11 @@ def _hidden_items(text: str, path: Path) -> list[Node]:
 
 
 def _check_start_fits(variant: Variant, node: Node) -> None:
-    """The robot must fit where the variant starts it (not half inside a wall)."""
+    """Each robot must fit where the variant starts it (not half inside a wall)."""
     world = variant.world()
+    names = variant.robot_names
     try:
-        Simulation(world, [("robot", world.robot, world.start)])
+        Simulation(world, [(names[i], world.start_robot(i), world.starts[i]) for i in range(len(names))])
     except StartBlocked as err:
         raise node.error(f"variant '{variant.name}': {err}") from None
 

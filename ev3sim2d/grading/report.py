@@ -76,9 +76,9 @@ def variant_details(variant: VariantResult) -> list[str]:
     for check in variant.checks:
         mark = "PASS" if check.passed else "----" if check.gated else "FAIL"
         goal = ", goal" if check.goal else ""
-        lines.append(
-            f"    {mark} {check.name} ({_points(check.points)}/{_points(check.max_points)}{goal}): {check.message}"
-        )
+        robot = f", robot: {check.robot}" if check.robot else ""
+        points = f"{_points(check.points)}/{_points(check.max_points)}{goal}{robot}"
+        lines.append(f"    {mark} {check.name} ({points}): {check.message}")
     return lines
 
 

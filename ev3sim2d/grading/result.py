@@ -10,6 +10,7 @@ Statuses of a variant and a submission:
 - `missing`: no program to run was found.
 A submission's status is the worst of its variants' (in the order crashed, memory, output, timeout, error, missing).
 
+In a lesson with several robots each check's result names the robot it looked at (`robot`).
 A secondary check that passed but earned nothing because a goal check of its variant failed is `gated`
 (and not passed); a hidden variant's result is named "hidden variant N" and holds no times or numbers
 (see scoring.py).
@@ -35,6 +36,7 @@ class CheckResult:
     t_s: float | None = None
     goal: bool = False  # one of the lesson's goal checks
     gated: bool = False  # a secondary check that passed, but earned nothing because a goal check failed
+    robot: str | None = None  # in a lesson with several robots, the one it looked at ("student", "pacer")
 
 
 @dataclass
@@ -70,6 +72,8 @@ class VariantResult:
         data["score"] = _number(self.score)
         data["max_score"] = _number(self.max_score)
         for check in data["checks"]:
+            if check["robot"] is None:  # a lesson of one robot: the results read as they always did
+                del check["robot"]
             check["points"] = _number(check["points"])
             check["max_points"] = _number(check["max_points"])
         return data

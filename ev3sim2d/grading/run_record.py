@@ -20,7 +20,8 @@ MOVING_CM = 1e-3  # a pose change below this between ticks is standing still
 
 @dataclass
 class RunRecord:
-    """One robot's run in one variant: trace + world, with the arrays checks read."""
+    """One robot's run in one variant: trace + world, with the arrays checks read (`robot`: which of
+    the run's robots, in the order of their starts)."""
 
     trace: Trace
     world: World
@@ -77,15 +78,28 @@ class RunRecord:
             self._cache["motion"] = motion[:, self.trace.robot_columns(self.robot)] if len(motion) else motion
         return self._cache["motion"]
 
+    def for_robot(self, index: int) -> RunRecord:
+        """The same run seen from another of its robots (index in the order of their starts)."""
+        if index == self.robot:
+            return self
+        return RunRecord(self.trace, self.world, self.time_limit_s, index)
+
+    def _flag(self, column: str) -> np.ndarray:
+        if column not in self._cache:
+            m = self._motion_columns()
+            values = m[:, POSE_COLUMNS.index(column)] > 0.5 if len(m) else np.zeros(0, dtype=bool)
+            self._cache[column] = np.concatenate([[False], values])
+        return self._cache[column]
+
     @property
     def touching(self) -> np.ndarray:
-        """Whether the body touches a wall (or another robot), per row (False at the start)."""
-        if "touching" not in self._cache:
-            m = self._motion_columns()
-            col = POSE_COLUMNS.index("touching")
-            values = m[:, col] > 0.5 if len(m) else np.zeros(0, dtype=bool)
-            self._cache["touching"] = np.concatenate([[False], values])
-        return self._cache["touching"]
+        """Whether the body touches a wall, per row (False at the start)."""
+        return self._flag("touching")
+
+    @property
+    def touching_robot(self) -> np.ndarray:
+        """Whether the body touches another robot, per row (False at the start)."""
+        return self._flag("touching_robot")
 
     def wheel_speeds(self) -> np.ndarray:
         """rows × 2: the left and right wheel motors' speed (degrees/s), 0 at the start."""
@@ -131,7 +145,7 @@ class RunRecord:
     # -- points of the robot ---------------------------------------------------------------
     def offset_of(self, point: str) -> tuple[float, float]:
         """(forward, left) cm of a named point of the robot from its centre."""
-        spec = self.world.robot
+        spec = self.world.start_robot(self.robot)
         if point == "centre":
             return (0.0, 0.0)
         if point == "front":

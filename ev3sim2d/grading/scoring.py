@@ -17,6 +17,7 @@ from .checks.finished import describe_error, stopped_with
 from .lesson import Lesson
 from .result import CheckResult, VariantResult
 from .run_record import RunRecord, seconds
+from .variant import STUDENT
 
 RUN_STATUS = {
     "finished": "graded",
@@ -62,11 +63,14 @@ def gated_message(failed_goals: list[str]) -> str:
     return f"{GATED} ({', '.join(failed_goals)} did not pass)"
 
 
-def check_results(checks: list[Check], outcomes: list[Outcome], hidden: bool = False) -> list[CheckResult]:
-    """The checks' outcomes as results, with the gating rule applied (see the module docstring)."""
+def check_results(
+    checks: list[Check], outcomes: list[Outcome], hidden: bool = False, robots: list[str] | None = None
+) -> list[CheckResult]:
+    """The checks' outcomes as results, with the gating rule applied (see the module docstring); with
+    `robots` (the names of each check's robot, in a lesson with several), each result names its robot."""
     failed_goals = [c.name for c, o in zip(checks, outcomes, strict=True) if c.goal and not o.passed]
     results = []
-    for check, found in zip(checks, outcomes, strict=True):
+    for index, (check, found) in enumerate(zip(checks, outcomes, strict=True)):
         gated = bool(failed_goals) and not check.goal and bool(found.passed)
         passed = bool(found.passed) and not gated
         if gated:
@@ -86,6 +90,7 @@ def check_results(checks: list[Check], outcomes: list[Outcome], hidden: bool = F
                 t_s,
                 goal=check.goal,
                 gated=gated,
+                robot=robots[index] if robots else None,
             )
         )
     return results
@@ -94,10 +99,12 @@ def check_results(checks: list[Check], outcomes: list[Outcome], hidden: bool = F
 def score_run(
     lesson: Lesson, variant_index: int, record: RunRecord, ran_out_of_memory: bool = False
 ) -> VariantResult:
-    """Every check of the lesson on the run, in the lesson's order, gated by the goal checks."""
+    """Every check of the lesson on the run (`record`: the student's robot's), each on the robot it looks
+    at, in the lesson's order, gated by the goal checks."""
     variant = lesson.variants[variant_index]
-    outcomes = [check.evaluate(record) for check in lesson.checks]
-    checks = check_results(lesson.checks, outcomes, variant.hidden)
+    outcomes = [check.evaluate(record.for_robot(variant.robot_index(check.robot))) for check in lesson.checks]
+    robots = [check.robot or STUDENT for check in lesson.checks] if lesson.several_robots else None
+    checks = check_results(lesson.checks, outcomes, variant.hidden, robots)
     status = "memory" if ran_out_of_memory else RUN_STATUS.get(record.status, "error")
     message = run_message(record, status, lesson.limits.memory_mb, variant.hidden)
     sim_time_s = None if variant.hidden else round(record.end_s, 3)
@@ -110,8 +117,18 @@ def not_run(lesson: Lesson, variant_index: int, status: str, message: str) -> Va
     variant = lesson.variants[variant_index]
     if variant.hidden:
         message = HIDDEN_NOT_RUN.get(status, "the run left no result")
+    several = lesson.several_robots
     checks = [
-        CheckResult(c.name, c.KIND, False, 0.0, c.points, f"not judged: {message}", goal=c.goal)
+        CheckResult(
+            c.name,
+            c.KIND,
+            False,
+            0.0,
+            c.points,
+            f"not judged: {message}",
+            goal=c.goal,
+            robot=(c.robot or STUDENT) if several else None,
+        )
         for c in lesson.checks
     ]
     return VariantResult(variant.report_name, variant.hidden, status, message, None, checks)

@@ -5,6 +5,12 @@ maze, noisy sensors with another seed.  The visible variants are in lesson.yaml;
 the hidden ones, graded like the others but never shipped nor shown to students,
 in `hidden/hidden.yaml` (see lesson.py), whose worlds and robots are looked for in
 that folder first.  Reports call a hidden variant only "hidden variant N".
+
+A variant may have other robots besides the student's (`others:`), each driven by a
+program of the lesson's own at a start pose of its own; robot i of the run starts at
+the world's start i, so the student's robot and the others take starts 1..n between
+them.  The student's program may read only the submission; each of the lesson's
+programs only its own file.
 """
 
 from __future__ import annotations
@@ -19,7 +25,31 @@ from ..world.robot_spec import SENSOR_KINDS, RobotSpec, find_robot, load_robot, 
 from ..world.world import World
 from ..world.yaml_source import Fields, Node
 
-VARIANT_KEYS = ("name", "world", "description", "hidden", "start", "robot", "noise", "seed", "time_s")
+VARIANT_KEYS = (
+    "name",
+    "world",
+    "description",
+    "hidden",
+    "start",
+    "robot",
+    "noise",
+    "seed",
+    "time_s",
+    "others",
+)
+STUDENT = "student"  # the name checks and reports give the student's robot
+OTHERS_EXAMPLE = "others: [{name: pacer, program: pacer.py, start: 1}]"
+
+
+@dataclass(frozen=True)
+class OtherRobot:
+    """A robot of the run driven by one of the lesson's own programs, not the student's."""
+
+    name: str  # what checks (`robot: pacer`) and reports call it
+    program: Path  # a trusted file of the lesson (or of its hidden folder); only its own brick reads it
+    start: int  # the world's start pose it takes, counted from 1
+
+
 VARIANT_EXAMPLE = "- {name: mirrored, world: maze-mirrored.yaml}"
 START_EXAMPLE = "start: {x_cm: 60, y_cm: 40, heading_deg: 90}"
 
@@ -38,6 +68,8 @@ class Variant:
     robot: RobotSpec | None = None  # None: the world's own robot
     noise: dict[str, float] = field(default_factory=dict)
     hidden_number: int = 0  # 1, 2, ... for hidden variants, in the order of hidden.yaml
+    student_start: int = 1  # the world's start pose the student's robot takes, counted from 1
+    others: list[OtherRobot] = field(default_factory=list)  # robots driven by the lesson's own programs
     _world: World | None = field(default=None, repr=False)
 
     @property
@@ -52,9 +84,37 @@ class Variant:
             robot = self.robot or world.robot
             if self.noise:
                 robot = with_noise(robot, self.noise)
-            starts = ([self.start] + list(world.starts[1:])) if self.start is not None else world.starts
+            starts = list(world.starts)
+            if self.start is not None:  # another start for the student's robot
+                starts[self.student_start - 1] = self.start
             self._world = dataclasses.replace(world, robot=robot, starts=starts)
         return self._world
+
+    @property
+    def robot_names(self) -> list[str]:
+        """The name of each robot of the run, in the order of their starts (robot i at start i + 1)."""
+        names = {self.student_start: STUDENT, **{other.start: other.name for other in self.others}}
+        return [names[start] for start in sorted(names)]
+
+    @property
+    def student_index(self) -> int:
+        """The student's robot's index among the run's robots (its start - 1)."""
+        return self.student_start - 1
+
+    def robot_index(self, name: str | None) -> int:
+        """The index of the robot called `name` in the run (None: the student's)."""
+        return self.robot_names.index(name or STUDENT)
+
+    def programs(self, submission: Path) -> list[Path]:
+        """The program of each robot in the order of their starts: the submission drives the student's."""
+        by_start = {self.student_start: submission, **{o.start: o.program for o in self.others}}
+        return [by_start[start] for start in sorted(by_start)]
+
+    def readable(self, submission: Path) -> list[list[Path]]:
+        """What each robot's brick may read besides Python: the submission (file or folder) for the
+        student's, and only its own file for each of the lesson's programs."""
+        by_start = {self.student_start: [submission], **{o.start: [o.program] for o in self.others}}
+        return [by_start[start] for start in sorted(by_start)]
 
 
 def with_noise(robot: RobotSpec, noise: dict[str, float]) -> RobotSpec:
@@ -95,6 +155,59 @@ def read_robot(node: Node, folders: Path | list[Path]) -> RobotSpec:
             f"shipped robots: {', '.join(shipped_robot_names())}"
         )
     return load_robot(path)
+
+
+def read_others(node: Node, folders: Path | list[Path], student_start: int) -> list[OtherRobot]:
+    """`others: [{name: pacer, program: pacer.py, start: 1}]`: robots driven by the lesson's programs
+    (files in the given folders, in order), each at a start of its own, not the student's."""
+    folders = _folders(folders)
+    others: list[OtherRobot] = []
+    for item in node.as_list("others", OTHERS_EXAMPLE):
+        if not item.is_mapping:
+            raise item.error(
+                f"each of `others` is a mapping like `{OTHERS_EXAMPLE[9:-1]}`, got {item.describe()}"
+            )
+        fields = item.as_fields("others", ("name", "program", "start"), OTHERS_EXAMPLE)
+        value = fields.text("program", example="program: pacer.py").strip()
+        program = next((f / value for f in folders if (f / value).is_file()), None)
+        if program is None or program.suffix != ".py":
+            raise fields.get("program").error(
+                f"no program '{value}' in {_named(folders)}; give a .py file of the lesson's folder"
+            )
+        name = fields.text("name", default=program.stem, example="name: pacer").strip()
+        if not name or any(c in name for c in "/\\ ") or name == STUDENT:
+            raise (fields.get("name") or fields.get("program")).error(
+                f"a robot's name is one word other than '{STUDENT}' (the student's robot), got {name!r}; "
+                "e.g. `name: pacer`"
+            )
+        start = fields.integer("start", example="start: 1")
+        if start < 1 or start == student_start:
+            raise fields.get("start").error(
+                f"'start' is the number of a start pose of the world (1 is the first) other than the "
+                f"student's ({student_start}), got {start}"
+            )
+        for other in others:
+            if other.name == name:
+                raise item.error(f"two of `others` are named '{name}'; give each its own `name:`")
+            if other.start == start:
+                raise fields.get("start").error(f"'{other.name}' already takes start {start}; give another")
+        others.append(OtherRobot(name, program.resolve(), start))
+    return others
+
+
+def check_starts(node: Node, world: World, student_start: int, others: list[OtherRobot]) -> None:
+    """The robots of the run take the world's starts 1..n between them, and the world has them."""
+    taken = sorted([student_start, *(o.start for o in others)])
+    if taken != list(range(1, len(taken) + 1)):
+        raise node.error(
+            f"the robots take starts {', '.join(map(str, taken))} of the world: robot i of a run starts at "
+            f"the world's start i, so {len(taken)} robots take starts 1 to {len(taken)}"
+        )
+    if len(world.starts) < len(taken):
+        raise node.error(
+            f"{len(taken)} robots (the student's and {len(others)} of `others`) but the world {world.source} "
+            f"has {len(world.starts)} start pose(s); give it one for each robot"
+        )
 
 
 def read_noise(node: Node) -> dict[str, float]:
@@ -139,6 +252,8 @@ def variant_from_node(
     default_seed: int,
     default_robot: RobotSpec | None,
     hidden: bool = False,
+    student_start: int = 1,
+    default_others: list[OtherRobot] | None = None,
 ) -> tuple[Variant, Fields]:
     """One entry of `variants:` (of lesson.yaml, or with `hidden` of hidden.yaml); the world, start and
     robot are read (and checked) now, worlds and robots looked for in `folders` in order."""
@@ -183,8 +298,14 @@ def variant_from_node(
         description=fields.text("description", default="").strip(),
         robot=robot,
         noise=read_noise(fields.get("noise")) if "noise" in fields else {},
+        student_start=student_start,
     )
+    if "others" in fields:
+        variant.others = read_others(fields.get("others"), folders, student_start)
+    else:
+        variant.others = list(default_others or [])
     world = load_maze(world_path)  # WorldFileError names the world file and its line
+    check_starts(fields.get("others") or world_node, world, student_start, variant.others)
     if "start" in fields:
         variant.start = read_start(fields.get("start"), world)
     return variant, fields

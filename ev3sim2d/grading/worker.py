@@ -9,7 +9,9 @@ is a simulator: it never runs the student's code itself.  It
 - sends the console (fds 1 and 2) to a file in its job folder,
 - runs `run_programs`, which runs the program in a sandboxed brick process with the
   lesson's limits (CPU time, memory, file sizes, processes) and may read only the
-  submission (file or folder) besides Python itself,
+  submission (file or folder) besides Python itself; in a lesson with other robots
+  (`others:`), each of the lesson's programs drives its robot from a brick of its own
+  that may read only that program's file,
 - scores the run with the lesson's checks (which read only the simulator's trace and
   the world), and writes `result.json` (the variant's result), and, when the parent
   asks for failed runs' traces, `trace.npz`; then ends with os._exit.
@@ -196,10 +198,14 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
     limits = BrickLimits(
         cpu_s=max(1, int(job.cpu_s)), memory_mb=int(job.memory_mb), file_mb=max(1, int(job.output_mb))
     )
-    readable = [[Path(job.readable or Path(job.entry).parent)]]
+    # the student's program drives the student's robot and may read only the submission; each of the
+    # lesson's own programs (other robots) only its own file
+    submission = Path(job.readable or Path(job.entry).parent)
+    readable = variant.readable(submission)
+    programs = variant.programs(Path(job.entry))
     try:
         result = run_programs(
-            [job.entry],
+            programs,
             world,
             None,
             job.time_s,
@@ -232,8 +238,12 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
     if result.status == "crashed" and result.limit is None:
         _write_json(folder / RESULT_FILE, {"outcome": "crashed", "message": result.reason})
         return 0
+    lesson_program = _lesson_program_failure(result, variant)
+    if lesson_program is not None:  # the lesson's bug, not the student's: said loudly, never scored
+        _write_json(folder / RESULT_FILE, {"outcome": "crashed", "message": lesson_program})
+        return 0
     out_of_memory = result.limit == "memory"
-    record = RunRecord(result.trace, world, variant.time_s)
+    record = RunRecord(result.trace, world, variant.time_s, variant.student_index)
     try:
         scored = score_run(lesson, job.variant, record, out_of_memory)
     except Exception:  # noqa: BLE001 - a check's bug, not the program's: the parent says so loudly
@@ -248,6 +258,18 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
         {"outcome": outcome, "variant": scored.to_dict(), "trace": kept, "wall_time_s": result.wall_time_s},
     )
     return 0
+
+
+def _lesson_program_failure(result, variant) -> str | None:
+    """Why one of the lesson's own programs (another robot's) stopped with an error, if it did."""
+    error = result.error or {}
+    if not variant.others or "robot" not in error:
+        return None
+    index = int(str(error["robot"]).removeprefix("robot")) - 1  # run_programs names them robot1, robot2, ...
+    if index == variant.student_index:
+        return None
+    name = variant.robot_names[index]
+    return f"the lesson's own program for the robot '{name}' stopped with an error: {error.get('type')}"
 
 
 # -- the parent side ------------------------------------------------------------------------

@@ -209,3 +209,15 @@ def test_every_kind_is_documented(kind):
     assert f"`{kind}`" in docs
     for param in cls.PARAMS:
         assert f"`{param.name}`" in docs, f"{kind}.{param.name} is not in docs/lessons.md"
+
+
+def test_robot_contacts_counts_the_times_the_robot_touches_another():
+    world = room()
+    poses = line((30, 30), (60, 30), 30)
+    bumps = [False] * 10 + [True] * 5 + [False] * 5 + [True] * 3 + [False] * 8
+    outcome = check("robot_contacts").evaluate(record(world, poses, touching_robot=bumps))
+    assert not outcome.passed
+    assert outcome.message == "touched another robot 2 times, first at 0.1 s (no contact passes)"
+    assert check("robot_contacts", max=2).evaluate(record(world, poses, touching_robot=bumps)).passed
+    walls = check("robot_contacts").evaluate(record(world, poses, touching=bumps))
+    assert walls.passed and walls.message == "never touched another robot"  # a wall is not a robot

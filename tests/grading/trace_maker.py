@@ -20,8 +20,11 @@ def room(
     return parse_maze(text, "<test room>")
 
 
-def trace_of(world, poses, touching=None, speeds=None, dt=0.01, status="finished", error=None):
-    """A trace whose robot goes through `poses` (x, y, heading), the first being its start, one per tick."""
+def trace_of(
+    world, poses, touching=None, speeds=None, dt=0.01, status="finished", error=None, touching_robot=None
+):
+    """A trace whose robot goes through `poses` (x, y, heading), the first being its start, one per tick;
+    `touching` and `touching_robot` say per pose whether it touches a wall, another robot."""
     x0, y0, h0 = poses[0]
     robots = [
         {
@@ -35,8 +38,9 @@ def trace_of(world, poses, touching=None, speeds=None, dt=0.01, status="finished
     trace = Trace(dt, robots, {"name": world.name, "title": world.title, "text": world.text}, 0)
     for i, (x, y, h) in enumerate(poses[1:], start=1):
         touch = 1.0 if touching and touching[i] else 0.0
+        bump = 1.0 if touching_robot and touching_robot[i] else 0.0
         left, right = speeds[i] if speeds else (0.0, 0.0)
-        trace.add_tick(round(i * dt, 6), [x, y, h, touch, 0, 0, 0, 0, left, 0, 0, right, 0])
+        trace.add_tick(round(i * dt, 6), [x, y, h, touch, bump, 0, 0, 0, 0, left, 0, 0, right, 0])
     trace.result = {"status": status, "sim_time_s": round((len(poses) - 1) * dt, 6), "error": error}
     return trace
 

@@ -9,6 +9,7 @@ from . import (  # noqa: F401 - each module registers its kind
     lap,
     on_line,
     reach_region,
+    robot_contacts,
     stop_in_region,
     stopped,
     wall_contacts,
