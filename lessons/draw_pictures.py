@@ -21,7 +21,8 @@ def draw(lesson_id: str) -> list[Path]:
         still = Path(folder) / "still.py"
         still.write_text("pass\n")
         for variant in lesson.visible_variants():
-            trace = run_programs([still], variant.world(), time_limit_s=0.01).trace
+            robots = len(variant.robot_names)  # the student's and the lesson's other robots, where they start
+            trace = run_programs([still] * robots, variant.world(), time_limit_s=0.01).trace
             path = lesson.folder / f"{variant.name}.png"
             frame.save_png(frame.draw_world_picture(trace, 640), path)
             written.append(path)

@@ -28,6 +28,7 @@ REQUIRED = [
     "maze",
     "find-color",
     "odometry",
+    "convoy",
 ]
 DRIVE = """\
 import time
