@@ -171,3 +171,22 @@ def test_runs_iterate_sets_of_strings_the_same_way_every_time(tmp_path):
         )
         outputs.add(json.loads(summary.read_text())["fingerprint"])
     assert len(outputs) == 1
+
+
+def test_lessons_names_a_broken_lesson_of_a_teachers_and_still_lists_the_others(tmp_path):
+    broken = tmp_path / "mine" / "broken"
+    broken.mkdir(parents=True)
+    (broken / "lesson.yaml").write_text(
+        "title: Broken\ngoal: Nothing.\ntime_s: 10\nvariants: []\nchecks: []\n"
+    )
+    result = cli("lessons", "--dir", tmp_path / "mine")
+    assert result.returncode == 2
+    assert str(broken / "lesson.yaml") in result.stderr
+    listed = [line.split()[0] for line in result.stdout.splitlines()]
+    assert listed == sorted(p.parent.name for p in (ROOT / "lessons").glob("*/lesson.yaml"))
+
+
+def test_examples_will_not_copy_into_a_file(tmp_path):
+    (tmp_path / "examples").write_text("not a folder")
+    result = cli("examples", cwd=tmp_path)
+    assert result.returncode == 2 and "is a file" in result.stderr
