@@ -11,8 +11,9 @@ from pathlib import Path
 
 import pytest
 
+from tests.installed.installed_venv import SOURCES  # what a wheel is built from
+
 ROOT = Path(__file__).resolve().parents[2]
-SOURCES = ("setup.py", "setup.cfg", "pyproject.toml", "README.md", "ev3sim2d", "ev3dev2", "mazes", "lessons")
 LESSONS = sorted(p.parent.name for p in (ROOT / "lessons").glob("*/lesson.yaml"))
 
 
