@@ -32,7 +32,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .protocol import Channel, SharedChannel
+from .protocol import PROTOCOL, Channel, SharedChannel
 from .protocol.shared_memory import available as shared_memory_available
 from .protocol.shared_memory import create_memory
 
@@ -287,6 +287,43 @@ def start_brick(
         channel = Channel(ours, spin_s=SPIN_S if spin else 0.0)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
     return BrickProcess(popen, channel, scratch, console), read_paths
+
+
+def brick_welcome(
+    brick: BrickProcess,
+    read_paths: list[str],
+    program: Path,
+    robot: str,
+    tick_us: int,
+    seed: int,
+    limits: BrickLimits,
+    sandbox: bool = True,
+) -> list:
+    """The welcome a brick started here gets: its robot's name, the clock, the seed, its program, and
+    the sandbox it must enter (what it may read and write, its limits; None: no sandbox)."""
+    return [
+        "welcome",
+        {
+            "protocol": PROTOCOL,
+            "robot": robot,
+            "tick_us": tick_us,
+            "seed": seed,
+            "program": str(program),
+            "program_dirs": [str(program.parent)],
+            "shim_root": str(shim_root()),
+            "site_packages": site_packages(),
+            "sandbox": {
+                "read_paths": read_paths,
+                "write_paths": [str(brick.scratch)],
+                "cpu_s": limits.cpu_s,
+                "memory_mb": limits.memory_mb,
+                "file_mb": limits.file_mb,
+                "processes": limits.processes,
+            }
+            if sandbox
+            else None,
+        },
+    ]
 
 
 def _let_through(folder: Path) -> None:

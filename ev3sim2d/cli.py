@@ -9,10 +9,12 @@ import sys
 # numpy's BLAS would start a thread per core that spins after each call: the simulator has no use for it
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from .commands import doctor, edit, examples, grade, lessons, mazes, render, run, show
+from .commands import doctor, edit, examples, grade, join, lessons, mazes, render, run, serve, show
 
 COMMANDS = [
     run,
+    serve,
+    join,
     mazes,
     examples,
     lessons,

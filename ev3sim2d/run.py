@@ -18,9 +18,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .brick_port import BrickPort
-from .brick_process import BrickLimits, BrickProcess, shim_root, site_packages, start_brick
+from .brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
 from .program import Program, ProgramError
-from .protocol import PROTOCOL, ProtocolError
+from .protocol import ProtocolError
 from .session import Session
 from .simulation import Simulation, StartBlocked
 from .trace import OutputLine, Trace
@@ -52,6 +52,7 @@ class RunResult:
     error: dict | None = None  # type, message, file, line, t_s, traceback
     limit: str | None = None  # the brick's limit it ran into: cpu, memory, output
     sandbox: list[dict] = field(default_factory=list)  # per brick: the isolation it got, layer by layer
+    robots: list[dict] = field(default_factory=list)  # per robot: its name, how its program ended and why
 
     @property
     def ok(self) -> bool:
@@ -84,6 +85,32 @@ def robot_specs(
                 "or one per program in the programs' order"
             )
     return [spec if spec is not None else world.start_robot(i) for i, spec in enumerate(given)]
+
+
+def robot_names(count: int) -> list[str]:
+    """The robots' names in the trace: `robot` alone, else robot1, robot2, ..."""
+    return ["robot"] if count == 1 else [f"robot{i + 1}" for i in range(count)]
+
+
+def new_simulation(
+    world: World,
+    count: int,
+    robot: RobotSpec | Sequence[RobotSpec | None] | None,
+    seed: int,
+    presses: list | None,
+) -> tuple[Simulation, list]:
+    """The world with `count` robots at its first starts, and the run's scripted button presses."""
+    if count > len(world.starts):
+        raise ProgramError(
+            f"{count} programs but the world '{world.name}' has {len(world.starts)} start pose(s); "
+            f"add starts to the world file or run fewer programs"
+        )
+    specs = robot_specs(world, count, robot)
+    names = robot_names(count)
+    sim = Simulation(world, [(names[i], specs[i], world.starts[i]) for i in range(count)], seed=seed)
+    presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
+    sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
+    return sim, presses
 
 
 def run_programs(
@@ -120,17 +147,9 @@ def run_programs(
     simulator's): a program learns of the world only by its sensors.
     """
     loaded = [Program(p) for p in programs]  # ProgramError: the caller reports it
-    if len(loaded) > len(world.starts):
-        raise ProgramError(
-            f"{len(loaded)} programs but the world '{world.name}' has {len(world.starts)} start pose(s); "
-            f"add starts to the world file or run fewer programs"
-        )
-    specs = robot_specs(world, len(loaded), robot)
-    names = ["robot"] if len(loaded) == 1 else [f"robot{i + 1}" for i in range(len(loaded))]
-    sim = Simulation(world, [(names[i], specs[i], world.starts[i]) for i in range(len(loaded))], seed=seed)
+    sim, presses = new_simulation(world, len(loaded), robot, seed, presses)
+    names = robot_names(len(loaded))
     limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
-    presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
-    sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
     limits = limits or BrickLimits()
     bricks: list[BrickProcess] = []
     ports: list[BrickPort] = []
@@ -143,60 +162,68 @@ def run_programs(
             may_read = readable[i] if readable else [path.parent]
             brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote)
             bricks.append(brick)
-            config = {
-                "protocol": PROTOCOL,
-                "robot": names[i],
-                "tick_us": sim.tick_us,
-                "seed": seed if program_seed is None else program_seed,
-                "program": str(path),
-                "program_dirs": [str(path.parent)],
-                "shim_root": str(shim_root()),
-                "site_packages": site_packages(),
-                "sandbox": {
-                    "read_paths": read_paths,
-                    "write_paths": [str(brick.scratch)],
-                    "cpu_s": limits.cpu_s,
-                    "memory_mb": limits.memory_mb,
-                    "file_mb": limits.file_mb,
-                    "processes": limits.processes,
-                }
-                if sandbox
-                else None,
-            }
-            brick.channel.send(["welcome", config])
+            brick_seed = seed if program_seed is None else program_seed
+            brick.channel.send(
+                brick_welcome(brick, read_paths, path, names[i], sim.tick_us, brick_seed, limits, sandbox)
+            )
             ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
         for port in ports:
-            _await_hello(port)
-        session = Session(sim, ports, limit_us, hang_after_s, printed, echo, spin=spin)
-        wall_start = _real_perf_counter()
-        session.run()
-        wall = _real_perf_counter() - wall_start
-    except KeyboardInterrupt:
+            await_hello(port)
+        session, wall = play(sim, ports, limit_us, hang_after_s, printed, echo, spin)
+    except KeyboardInterrupt:  # while the bricks start
         for port in ports:
             port.gone = port.gone or "interrupted"
-        session = session or Session(sim, ports, limit_us, hang_after_s)
+        session = Session(sim, ports, limit_us, hang_after_s)
         session.interrupted = True
     finally:
         for i, brick in enumerate(bricks):
             gone = ports[i].gone if i < len(ports) else "start"
             ending = gone is None or gone.startswith(("gone", "start"))
             brick.stop(patience_s=2.0 if ending else 0.0)
-    result = _result(sim, loaded, ports, bricks, wall, session)
+    shown = [(str(p.path), str(p.path.resolve())) for p in loaded]
+    result = run_result(sim, shown, ports, bricks, wall, session)
     del sim, ports, session
     gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
     return result
 
 
-def _await_hello(port: BrickPort) -> None:
+def play(
+    sim: Simulation,
+    ports: list[BrickPort],
+    limit_us: int | None,
+    hang_after_s: float,
+    printed: list,
+    echo,
+    spin: bool = True,
+) -> tuple[Session, float]:
+    """The session of bricks that have all said hello, to its end; it and its wall time."""
+    session = Session(sim, ports, limit_us, hang_after_s, printed, echo, spin=spin)
+    wall_start = _real_perf_counter()
+    try:
+        session.run()
+    except KeyboardInterrupt:  # (session.run handles one during the run; this is one at its very end)
+        for port in ports:
+            port.gone = port.gone or "interrupted"
+        session.interrupted = True
+    return session, _real_perf_counter() - wall_start
+
+
+def await_hello(port: BrickPort, timeout_s: float = START_TIMEOUT_S) -> None:
     """The brick is up (interpreter, shim, sandbox) and says what isolation it got."""
     try:
-        message = port.channel.receive(timeout_s=START_TIMEOUT_S)
+        message = port.channel.receive(timeout_s=timeout_s)
     except ProtocolError as err:
         port.gone = f"start: {err}"
         return
     if message is None:
-        port.gone = f"start: the brick was not ready within {START_TIMEOUT_S:g} s"
-    elif message[0] == "hello" and len(message) == 2 and isinstance(message[1], dict):
+        port.gone = f"start: the brick was not ready within {timeout_s:g} s"
+    else:
+        take_hello(port, message)
+
+
+def take_hello(port: BrickPort, message: list) -> None:
+    """A brick's first message: hello, or the end of a program it could not even start."""
+    if message[0] == "hello" and len(message) == 2 and isinstance(message[1], dict):
         port.hello = message[1]
     elif message[0] == "end" and len(message) == 2 and isinstance(message[1], dict):
         port.end = message[1]  # it could not even start the program (it says why)
@@ -204,13 +231,13 @@ def _await_hello(port: BrickPort) -> None:
         port.gone = "start: the brick did not greet"
 
 
-def _program_error(port: BrickPort, program: Program) -> dict | None:
-    """The program's error as the brick reported it, checked and with the file named as the user named it."""
+def _program_error(port: BrickPort, shown: str, real: str) -> dict | None:
+    """The program's error as the brick reported it, checked and with the file named as the user named it
+    (shown; real: its path as the brick knows it)."""
     how = port.end or {}
     error = how.get("error")
     if how.get("status") != "error" or not isinstance(error, dict):
         return None
-    shown, real = str(program.path), str(program.path.resolve())
 
     def text(key: str, limit: int = 20_000) -> str:
         value = error.get(key)
@@ -231,8 +258,12 @@ def _program_error(port: BrickPort, program: Program) -> dict | None:
     return report
 
 
-def _crash(port: BrickPort, brick: BrickProcess) -> tuple[str, str | None]:
-    """Why a brick ended without saying so: a limit it ran into, or how its process died."""
+def _crash(port: BrickPort, brick: BrickProcess | None) -> tuple[str, str | None]:
+    """Why a brick ended without saying so: a limit it ran into, or how its process died (brick None:
+    a brick on another computer, whose process this one never sees)."""
+    if brick is None:
+        why = port.gone.split(": ", 1)[-1] if port.gone else "no word"
+        return f"the connection to the program's computer was lost ({why})", None
     name = brick.ended_by_signal()
     console = brick.console_text
     if name in LIMIT_SIGNALS:
@@ -247,49 +278,77 @@ def _crash(port: BrickPort, brick: BrickProcess) -> tuple[str, str | None]:
     return f"the program's process ended without a word (exit status {brick.popen.returncode}: {last})", None
 
 
-def _result(sim, programs, ports, bricks, wall, session) -> RunResult:
-    t = session.world_us / 1e6 if session is not None else 0.0
-    error = None
-    status = None
-    reason = None
-    limit = None
-    for port, program, brick in zip(ports, programs, bricks, strict=False):
-        found = _program_error(port, program)
-        if found is not None and error is None:
-            error = found
-            if len(programs) > 1:
-                error["robot"] = port.robot.name
-        if port.gone == "hung" and status is None:
-            status = "hung"
-            reason = (
-                f"stopped: the program ran for a while without using the robot or the clock "
-                f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
-            )
-        elif port.gone == "interrupted" and status is None:
-            status, reason = "interrupted", f"interrupted at {t:.2f} s"
-        elif port.gone is not None and port.gone != "time limit" and status is None:
-            what, limit = (
-                _crash(port, brick) if port.gone.startswith(("gone", "start")) else (port.gone, None)
-            )
-            if limit == "cpu":
-                what = "the program used more CPU time than it may"
-            elif limit == "output":
-                what = "the program wrote files larger than it may"
-            elif limit == "memory":
-                what = "the program ran out of memory"
-            status, reason = "crashed", f"{what} (at {t:.2f} s)"
-    ends = [(port.end or {}).get("status") for port in ports]
-    if status is None and error is not None:
-        status = "error"
+LIMIT_WHAT = {
+    "cpu": "the program used more CPU time than it may",
+    "output": "the program wrote files larger than it may",
+    "memory": "the program ran out of memory",
+}
+
+
+def _robot_end(port: BrickPort, error: dict | None, brick: BrickProcess | None, t: float) -> dict:
+    """How one robot's brick ended: status, reason (as for a whole run), and the limit it ran into.
+
+    `early` marks an end that decides the whole run's status before any program's error (a hang, an
+    interruption, a crash)."""
+    end = port.end or {}
+    if port.gone == "hung":
+        what = "the program ran" if brick is not None else "the program's computer sent nothing"
+        reason = (
+            f"stopped: {what} for a while without using the robot or the clock "
+            f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
+        )
+        return {"status": "hung", "reason": reason, "limit": None, "early": True}
+    if port.gone == "interrupted":
+        return {"status": "interrupted", "reason": f"interrupted at {t:.2f} s", "limit": None, "early": True}
+    if port.gone is not None and port.gone != "time limit":
+        what, limit = _crash(port, brick) if port.gone.startswith(("gone", "start")) else (port.gone, None)
+        what = LIMIT_WHAT.get(limit, what)
+        return {"status": "crashed", "reason": f"{what} (at {t:.2f} s)", "limit": limit, "early": True}
+    if error is not None:
         where = f"{error['file']}, line {error['line']}, " if error["line"] else ""
         reason = f"{error['type']}: {error['message']} ({where}at {t:.2f} s)"
-    elif status is None and "deadlock" in ends:
-        status = "hung"
+        limit = "memory" if error["type"] == "MemoryError" else None
+        return {"status": "error", "reason": reason, "limit": limit, "early": False}
+    if end.get("status") == "deadlock":
         reason = f"stopped: every thread of the program is waiting for another (a deadlock) at {t:.2f} s"
-    elif status is None and "time_limit" in ends:
-        status, reason = "time_limit", f"ran until the time limit of {t:.2f} s"
-    elif status is None:
-        status, reason = "finished", f"finished at {t:.2f} s"
+        return {"status": "hung", "reason": reason, "limit": None, "early": False}
+    if end.get("status") == "time_limit":
+        return {
+            "status": "time_limit",
+            "reason": f"ran until the time limit of {t:.2f} s",
+            "limit": None,
+            "early": False,
+        }
+    return {"status": "finished", "reason": f"finished at {t:.2f} s", "limit": None, "early": False}
+
+
+def run_result(
+    sim: Simulation,
+    shown: list[tuple[str, str]],
+    ports: list[BrickPort],
+    bricks: Sequence[BrickProcess | None],
+    wall: float,
+    session: Session | None,
+) -> RunResult:
+    """The run's result from its ports: shown holds each program's name as the user gave it and its
+    path as its brick knew it; bricks the processes (None: a brick on another computer)."""
+    t = session.world_us / 1e6 if session is not None else 0.0
+    ends = []
+    error = None
+    for port, (name, real), brick in zip(ports, shown, bricks, strict=False):
+        found = _program_error(port, name, real)
+        if found is not None and error is None:
+            error = found
+            if len(shown) > 1:
+                error["robot"] = port.robot.name
+        robot_t = t if port.gone or port.end is None else min(t, port.time_us / 1e6)
+        ends.append((_robot_end(port, found, brick, robot_t), _robot_end(port, found, brick, t)))
+    # the run: the first hang, interruption or crash; else the first error; a deadlock; the time limit
+    order = [e for _, e in ends if e["early"]] or [e for _, e in ends if e["status"] == "error"]
+    order = order or [e for _, e in ends if e["status"] == "hung"]
+    order = order or [e for _, e in ends if e["status"] == "time_limit"]
+    first = order[0] if order else {"status": "finished", "reason": f"finished at {t:.2f} s", "limit": None}
+    status, reason, limit = first["status"], first["reason"], first["limit"]
     if error is not None and error["type"] == "MemoryError":
         limit = "memory"
     trace = sim.finish()
@@ -307,7 +366,11 @@ def _result(sim, programs, ports, bricks, wall, session) -> RunResult:
         "limit": limit,
     }
     sandbox = [dict((port.hello or {}).get("sandbox") or {}) for port in ports]
-    return RunResult(status, reason, t, wall, trace, error, limit, sandbox)
+    robots = [
+        {"robot": port.robot.name, "status": own["status"], "reason": own["reason"]}
+        for port, (own, _) in zip(ports, ends, strict=False)
+    ]
+    return RunResult(status, reason, t, wall, trace, error, limit, sandbox, robots)
 
 
 def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:

@@ -74,14 +74,14 @@ def _press(text: str) -> ButtonPress:
         raise argparse.ArgumentTypeError(str(err)) from None
 
 
-class _RobotOptionError(Exception):
+class RobotOptionError(Exception):
     """A --robot option that cannot be used; the message says which and what to do."""
 
 
-def _robots(names: list[str], programs: list[str]) -> list[RobotSpec] | None:
+def robots_given(names: list[str], programs: list[str]) -> list[RobotSpec] | None:
     """The robots --robot gives: none (each start's or the world's robot), one for all, or one per program."""
     if len(names) > 1 and len(names) != len(programs):
-        raise _RobotOptionError(
+        raise RobotOptionError(
             f"{len(names)} --robot options for {len(programs)} program(s); give --robot once (for every "
             f"robot) or once per program, in the programs' order"
         )
@@ -92,7 +92,7 @@ def _robots(names: list[str], programs: list[str]) -> list[RobotSpec] | None:
             which = f"--robot {name}"
             if len(names) > 1:
                 which += f" (the robot of the {_ordinal(number)} program, {program})"
-            raise _RobotOptionError(
+            raise RobotOptionError(
                 f"{which}: no such robot file (looked in the current folder and among the shipped robots: "
                 f"{', '.join(shipped_robot_names())}); check the path, or give a shipped robot's name"
             )
@@ -105,42 +105,34 @@ def _ordinal(number: int) -> str:
     return f"{number}{suffix}"
 
 
-def _write_outputs(args, result: RunResult) -> None:
+def write_outputs(args, result: RunResult, programs: list[str]) -> None:
+    """The outputs the options ask for: trace, summary, pictures and video."""
     if args.trace:
         result.trace.save(args.trace)
     if args.summary:
-        write_summary(run_summary(result, args.programs, args.maze, args.seed, args.time), args.summary)
+        write_summary(run_summary(result, programs, args.maze, args.seed, args.time), args.summary)
     if args.png or args.video or args.frames:
         write_pictures(result.trace, args)
 
 
-def main(args) -> int:
-    if args.time is not None and args.time <= 0:
-        return fail("--time must be a positive number of seconds")
-    try:
-        world = load_maze(find_maze(args.maze))
-        robot = _robots(args.robot, args.programs)
-        for program in args.programs:
-            if not Path(program).is_file():
-                return fail(f"{program}: no such program file")
-        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
-        become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
-        result = run_programs(
-            args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
-        )
-    except (WorldFileError, _RobotOptionError) as err:
-        return fail(str(err))
-    except ProgramError as err:
-        return fail(str(err), EXIT_PROGRAM_ERROR)
-    except (StartBlocked, FileNotFoundError) as err:
-        return fail(str(err))
+STATUS_CODES = {
+    "finished": EXIT_OK,
+    "time_limit": EXIT_OK,
+    "error": EXIT_PROGRAM_ERROR,
+    "hung": EXIT_HUNG,
+    "interrupted": EXIT_INTERRUPTED,
+    "crashed": EXIT_PROGRAM_ERROR,
+}
 
+
+def report_end(args, result: RunResult, programs: list[str]) -> int:
+    """Show the program's error, write the outputs, say how the run ended; the exit status."""
     if result.error:
         print(result.error["traceback"].rstrip(), file=sys.stderr)
         if result.error.get("hint"):
             print(f"hint: {result.error['hint']}", file=sys.stderr)
     try:
-        _write_outputs(args, result)
+        write_outputs(args, result, programs)
     except OSError as err:
         print(f"ev3sim2d: error: could not write the outputs: {err}", file=sys.stderr)
         return EXIT_USAGE
@@ -149,12 +141,28 @@ def main(args) -> int:
         f"ev3sim2d: {result.reason} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
         file=sys.stderr,
     )
-    code = {
-        "finished": EXIT_OK,
-        "time_limit": EXIT_OK,
-        "error": EXIT_PROGRAM_ERROR,
-        "hung": EXIT_HUNG,
-        "interrupted": EXIT_INTERRUPTED,
-        "crashed": EXIT_PROGRAM_ERROR,
-    }[result.status]
-    return code
+    return STATUS_CODES[result.status]
+
+
+def main(args) -> int:
+    if args.time is not None and args.time <= 0:
+        return fail("--time must be a positive number of seconds")
+    try:
+        world = load_maze(find_maze(args.maze))
+        robot = robots_given(args.robot, args.programs)
+        for program in args.programs:
+            if not Path(program).is_file():
+                return fail(f"{program}: no such program file")
+        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
+        become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
+        result = run_programs(
+            args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
+        )
+    except (WorldFileError, RobotOptionError) as err:
+        return fail(str(err))
+    except ProgramError as err:
+        return fail(str(err), EXIT_PROGRAM_ERROR)
+    except (StartBlocked, FileNotFoundError) as err:
+        return fail(str(err))
+
+    return report_end(args, result, args.programs)

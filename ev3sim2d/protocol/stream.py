@@ -164,6 +164,10 @@ class Channel:
         """Whether a whole message is here already (without reading the socket)."""
         return self._buffer.find(b"\n", self._start) >= 0
 
+    def buffered_bytes(self) -> int:
+        """How many bytes have arrived that are not yet a whole message."""
+        return len(self._buffer) - self._start
+
     def asleep(self, flag: bool) -> None:
         """A channel whose data does not come through the socket is told its reader blocks on it."""
 

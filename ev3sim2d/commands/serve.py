@@ -1,0 +1,121 @@
+"""`ev3sim2d serve`: hold a world for N robots; programs join it from other computers (docs/network.md)."""
+
+from __future__ import annotations
+
+import argparse
+import secrets
+import sys
+
+from ..brick_process import become_subreaper
+from ..lobby import AddressInUse, Lobby, is_loopback
+from ..program import ProgramError
+from ..render.outputs import add_picture_arguments
+from ..run import echo_line
+from ..serve import serve_run
+from ..simulation import StartBlocked
+from ..world.maze_file import find_maze, load_maze
+from ..world.source_error import WorldFileError
+from .exit_codes import EXIT_INTERRUPTED, fail
+from .run import RobotOptionError, _press, report_end, robots_given
+
+NAME = "serve"
+HELP = "hold a world for N robots whose programs join over the network (ev3sim2d join)"
+DEFAULT_PORT = 9003
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--maze", required=True, help="world file, or the name of a shipped world")
+    parser.add_argument(
+        "--robots", type=int, metavar="N", help="how many robots (default: one per start of the world)"
+    )
+    parser.add_argument(
+        "--host",
+        default="127.0.0.1",
+        help="the address to listen on (default: 127.0.0.1, this computer only); any other needs a join "
+        "token, which is printed",
+    )
+    parser.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"TCP port (default: {DEFAULT_PORT})")
+    parser.add_argument("--token", help="the join token (default: a random one, when --host is not loopback)")
+    parser.add_argument(
+        "--robot",
+        action="append",
+        default=[],
+        metavar="FILE",
+        help="robot file or shipped robot name: once for every robot, or once per robot in order "
+        "(default: the robot the start names, else the world's robot)",
+    )
+    parser.add_argument(
+        "--time", type=float, default=60.0, metavar="S", help="stop after S seconds of simulated time (default: 60)"
+    )
+    parser.add_argument("--seed", type=int, default=0, help="seed for sensor noise and the programs' random")
+    parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
+    parser.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
+    parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
+    parser.add_argument("--quiet", action="store_true", help="do not show what the programs print")
+    parser.add_argument(
+        "--press", action="append", default=[], type=_press, metavar="BUTTON@S", help="press a brick button at S s"
+    )
+    parser.add_argument(
+        "--hang-after",
+        type=float,
+        default=5.0,
+        metavar="S",
+        help="drop a brick that is silent S real seconds while the world waits for it (default: 5)",
+    )
+    add_picture_arguments(parser)
+
+
+def _log(text: str) -> None:
+    print(f"ev3sim2d: {text}", file=sys.stderr, flush=True)
+
+
+def main(args) -> int:
+    if args.time is not None and args.time <= 0:
+        return fail("--time must be a positive number of seconds")
+    if not 0 <= args.port < 65536:
+        return fail(f"--port {args.port}: a TCP port is 1 to 65535")
+    try:
+        world = load_maze(find_maze(args.maze))
+        count = len(world.starts) if args.robots is None else args.robots
+        if not 1 <= count <= len(world.starts):
+            return fail(
+                f"--robots {count}: the world '{world.name}' has {len(world.starts)} start pose(s); "
+                f"serve 1 to {len(world.starts)} robots, or add starts to the world file"
+            )
+        robot = robots_given(args.robot, [f"robot {i + 1}" for i in range(count)])
+    except (WorldFileError, RobotOptionError, FileNotFoundError) as err:
+        return fail(str(err))
+    token = args.token
+    if token is None and not is_loopback(args.host):
+        token = secrets.token_urlsafe(6)
+    lobby = Lobby(args.host, args.port, count, token, _log)
+    try:
+        host, port = lobby.open()
+    except AddressInUse as err:
+        return fail(str(err))
+    except OSError as err:
+        return fail(f"cannot listen on {args.host}:{args.port}: {err.strerror or err}")
+    where = f"[{host}]:{port}" if ":" in host else f"{host}:{port}"
+    _log(f"serving '{world.name}' for {count} robot(s) on {where}")
+    join = f"ev3sim2d join {where} PROGRAM.py [--robot 1..{count}]" + (f" --token {token}" if token else "")
+    _log(f"join with: {join}")
+    if host in ("0.0.0.0", "::"):
+        _log("(from another computer, put this computer's address on the network in place of the host)")
+    names = {}
+    echo = None if args.quiet else echo_line(sys.stdout, count)
+    become_subreaper()
+    try:
+        result, guests = serve_run(
+            lobby, world, count, robot, args.time, args.seed, args.hang_after, echo, args.press
+        )
+        names = [f"{g.fields['name']}: {g.fields['program']}" for g in guests]
+    except KeyboardInterrupt:
+        joined = sum(1 for g in lobby.guests if g.greeting is not None)
+        return fail(f"interrupted before the run: {joined} of {count} robot(s) had a program", EXIT_INTERRUPTED)
+    except (ProgramError, StartBlocked) as err:
+        return fail(str(err))
+    finally:
+        lobby.close()
+    for own, name in zip(result.robots, names, strict=False):
+        _log(f"{own['robot']} ({name}): {own['reason']}")
+    return report_end(args, result, names)
