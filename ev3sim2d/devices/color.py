@@ -60,6 +60,7 @@ def wall_share(distance_cm: float | None) -> float:
 
 
 class ColorSensor(LegoSensor):
+    KIND = "color"
     DRIVER = "lego-ev3-color"
     MODES = {
         "COL-REFLECT": Mode(1, 0, "pct", "s8", 0, 100),
@@ -69,6 +70,9 @@ class ColorSensor(LegoSensor):
         "RGB-RAW": Mode(4, 0, "", "s16", 0, 1023),
         "COL-CAL": Mode(3, 0, "", "u16", 0, 65535, noisy=False),
     }
+    OPTIONS = {"spot_cm": (DEFAULT_SPOT_CM, "cm", "diameter of the floor spot the sensor sees")}
+    LABEL = "colour"
+    FLOOR_SPOT = True  # (facing forward it reads a wall)
 
     def __init__(self, address, spec, surroundings, floor, ambient: float = 10.0) -> None:
         super().__init__(address, spec, surroundings)

@@ -18,7 +18,9 @@ from .sensor import LegoSensor, Mode
 
 
 class GyroSensor(LegoSensor):
+    KIND = "gyro"
     DRIVER = "lego-ev3-gyro"
+    FACINGS = ("down", "forward")  # it measures the robot's turns, whichever way it is fitted
     MODES = {
         "GYRO-ANG": Mode(1, 0, "deg", "s16", -32768, 32767),
         "GYRO-RATE": Mode(1, 0, "d/s", "s16", -440, 440),

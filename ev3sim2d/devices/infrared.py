@@ -16,6 +16,7 @@ DEFAULT_CONE_DEG = 30.0
 
 
 class InfraredSensor(LegoSensor):
+    KIND = "infrared"
     DRIVER = "lego-ev3-ir"
     MODES = {
         "IR-PROX": Mode(1, 0, "pct", "s8", 0, 100),
@@ -25,6 +26,23 @@ class InfraredSensor(LegoSensor):
         "IR-S-ALT": Mode(4, 0, "pct", "s8", 0, 100, noisy=False),
         "IR-CAL": Mode(2, 0, "", "s32", 0, 1023, noisy=False),
     }
+    FACINGS = ("forward",)
+    FACING_HINTS = {
+        "down": (
+            "an infrared sensor facing down would see the floor, which ev3sim2d does not model; "
+            "write `facing: forward`"
+        )
+    }
+    OPTIONS = {
+        "cone_deg": (DEFAULT_CONE_DEG, "degrees", "full opening angle of the infrared beam"),
+        "max_cm": (FULL_SCALE_CM, "cm", "distance that reads as proximity 100"),
+    }
+    HOUSING = "eyes"
+    BEAM_APPROXIMATE = True
+
+    @classmethod
+    def beam_cm(cls, mode: str, values: list[int], max_cm: float) -> float | None:
+        return values[0] / 100 * max_cm if values and mode == "IR-PROX" else None
 
     def __init__(self, address, spec, surroundings) -> None:
         super().__init__(address, spec, surroundings)

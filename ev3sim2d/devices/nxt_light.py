@@ -23,11 +23,14 @@ from .sensor import Mode
 
 
 class NxtLightSensor(ColorSensor):
+    KIND = "nxt-light"
     DRIVER = "lego-nxt-light"
     MODES = {
         "REFLECT": Mode(1, 1, "pct", "s32", 0, 1000, raw=(4116, 543, 0, 1000)),
         "AMBIENT": Mode(1, 1, "pct", "s32", 0, 1000, raw=(4164, 773, 0, 1000)),
     }
+    OPTIONS = {"spot_cm": (2.0, "cm", "diameter of the floor spot the sensor sees")}
+    LABEL = "NXT light"
 
     def measure(self, mode: str) -> tuple[float, ...]:
         if mode == "AMBIENT":

@@ -21,11 +21,14 @@ SOUND_REF_CM = 10.0
 
 
 class NxtSoundSensor(LegoSensor):
+    KIND = "nxt-sound"
     DRIVER = "lego-nxt-sound"
     MODES = {
         "DB": Mode(1, 1, "pct", "s32", 0, 1000, raw=(0, 5000, 0, 1000)),
         "DBA": Mode(1, 1, "pct", "s32", 0, 1000, raw=(0, 5000, 0, 1000)),
     }
+    FACINGS = ("forward", "down")  # it hears all round
+    LABEL = "NXT sound"
 
     def measure(self, mode: str) -> tuple[float, ...]:
         around = self.around

@@ -53,8 +53,29 @@ class LegoSensor(Device):
 
     sysfs_class = "lego-sensor"
     name_prefix = "sensor"
-    DRIVER = ""
-    MODES: dict[str, Mode] = {}
+    # What a kind of sensor says about itself, so that it is one file and one line in registry.py
+    # (docs/devices.md): robot files, the video and a program's ev3dev2 all learn it from here.
+    KIND = ""  # its name in robot files (`kind: ultrasonic`)
+    DRIVER = ""  # its driver's name, as a program finds it (`Sensor(INPUT_1, driver_name=...)`)
+    MODES: dict[str, Mode] = {}  # the first is the mode it starts in
+    FACINGS: tuple[str, ...] = (
+        "down",
+        "forward",
+    )  # the ways `measure` models it facing; the first is the default
+    FACING_HINTS: dict[str, str] = {}  # a facing it does not model -> why not, and what to write instead
+    OPTIONS: dict[str, tuple[float, str, str]] = {}  # extra robot-file keys: name -> (default, unit, meaning)
+    # how the video shows it (render/): its name in the panel (default: KIND); its housing on the robot:
+    # "box", "bumper" or "eyes" (the ultrasonic and infrared sensors' two); whether it shows the floor
+    # spot it sees when it faces down; and `beam_cm`, the distance its beam reaches by a reading
+    LABEL = ""
+    HOUSING = "box"
+    FLOOR_SPOT = False
+    BEAM_APPROXIMATE = False  # the beam's distance is an estimate ("≈12 cm"), not a measurement ("12.3 cm")
+
+    @classmethod
+    def beam_cm(cls, mode: str, values: list[int], max_cm: float) -> float | None:
+        """How far the sensor's beam reaches (cm) by a reading in `mode`; None: it has no beam to draw."""
+        return None
 
     def __init__(self, address: str, spec, surroundings: Surroundings) -> None:
         super().__init__(address, self.DRIVER)

@@ -21,8 +21,21 @@ DEFAULT_BUMPER_CM = 2.0
 
 
 class TouchSensor(LegoSensor):
+    KIND = "touch"
     DRIVER = "lego-ev3-touch"
     MODES = {"TOUCH": Mode(1, 0, "", "s8", 0, 1, noisy=False)}
+    FACINGS = ("forward",)
+    FACING_HINTS = {
+        "down": "a touch sensor facing down would be pressed by the floor all the time; write `facing: forward`"
+    }
+    OPTIONS = {
+        "bumper_cm": (
+            DEFAULT_BUMPER_CM,
+            "cm",
+            "bumper width across its tip: a wall anywhere on it presses it",
+        )
+    }
+    HOUSING = "bumper"
 
     def __init__(self, address, spec, surroundings) -> None:
         super().__init__(address, spec, surroundings)

@@ -22,6 +22,7 @@ SINGLE = ("US-SI-CM", "US-SI-IN")
 
 
 class UltrasonicSensor(LegoSensor):
+    KIND = "ultrasonic"
     DRIVER = "lego-ev3-us"
     MODES = {
         "US-DIST-CM": Mode(1, 1, "cm", "s16", 0, 2550),
@@ -32,6 +33,25 @@ class UltrasonicSensor(LegoSensor):
         "US-DC-CM": Mode(1, 1, "cm", "s16", 0, 2550),
         "US-DC-IN": Mode(1, 1, "in", "s16", 0, 1003),
     }
+    FACINGS = ("forward",)
+    FACING_HINTS = {
+        "down": (
+            "an ultrasonic sensor facing down would measure its height above the floor, which ev3sim2d does "
+            "not model (the floor is flat and has no height); write `facing: forward`"
+        )
+    }
+    OPTIONS = {
+        "cone_deg": (DEFAULT_CONE_DEG, "degrees", "full opening angle of the sound beam"),
+        "max_cm": (RANGE_CM, "cm", "farthest distance measured; beyond it the sensor reads max_cm"),
+    }
+    HOUSING = "eyes"
+
+    @classmethod
+    def beam_cm(cls, mode: str, values: list[int], max_cm: float) -> float | None:
+        if not values or not mode.startswith(("US-DIST", "US-SI", "US-DC")):
+            return None
+        value = values[0] / 10
+        return value * 2.54 if mode.endswith("-IN") else value
 
     def __init__(self, address, spec, surroundings) -> None:
         super().__init__(address, spec, surroundings)

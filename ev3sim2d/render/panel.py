@@ -15,12 +15,11 @@ import cv2
 import numpy as np
 
 from ..devices.motor import STATE_NAMES
-from ..devices.registry import SENSORS
 from ..trace import Trace
 from ..world.colors import COLOR_NAMES_BY_ID, EV3_COLORS
 from . import palette
 from .layout import FrameLayout
-from .robot_layer import RobotLook
+from .robot_layer import RobotLook, sensor_device
 from .text import Font, draw_text
 from .timeline import Timeline
 
@@ -39,7 +38,6 @@ LED_COLORS = {
     "orange": (255, 120, 0),
     "yellow": (240, 228, 66),
 }
-SENSOR_LABELS = {"color": "colour", "nxt-light": "NXT light", "nxt-sound": "NXT sound"}  # others: the kind
 _COLOR_SWATCHES = {c.id: palette.bgr(c.display_rgb) for c in EV3_COLORS.values()}
 
 
@@ -81,8 +79,7 @@ def sensor_value_text(kind: str, mode: str, values: list[int]) -> str:
             return f"{v}°/s"
         if mode == "GYRO-G&A" and len(values) > 1:
             return f"{values[0]}° {values[1]}°/s"
-    found = SENSORS.get(kind)
-    mode_spec = found.MODES.get(mode) if found is not None else None
+    mode_spec = sensor_device(kind).MODES.get(mode)  # (none for a kind this ev3sim2d does not know)
     if mode_spec is None or mode_spec.decimals == 0:
         text = " ".join(str(x) for x in values)
     else:
@@ -256,7 +253,7 @@ class Panel:
                 _text(image, f, "value", self.right, y + self.row, dim, align="right")
             for (port, kind), sy in zip(robot["sensors"], rows.sensor_ys, strict=True):
                 _text(image, f, port, self.left, sy, palette.TEXT)
-                _text(image, f, SENSOR_LABELS.get(kind, kind), self.col(5), sy, palette.TEXT)
+                _text(image, f, sensor_device(kind).LABEL or kind, self.col(5), sy, palette.TEXT)
             if not self.compact:
                 my = rows.motor_ys[0] - self.row if rows.motor_ys else rows.sensor_ys[-1] + self.row
                 _text(image, f, "port kind", self.left, my, dim)

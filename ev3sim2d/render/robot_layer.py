@@ -14,13 +14,14 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from ..devices.registry import SENSORS, DeviceKindError, sensor_class
+from ..devices.sensor import LegoSensor
 from ..world.robot_spec import DEFAULT_ROBOT_COLOR
 from . import palette
 from .layout import SHIFT, MapView
 from .text import Font, blend_mask, draw_label
 from .walls import Walls
 
-SPOT_KINDS = ("color", "nxt-light")  # sensors that look down at a spot of floor
 TYRE_WIDTH_CM = 2.8  # the driving base's 56 × 28 mm tyres
 BEAM_ALPHA = 0.28
 TRAIL_RECENT_S = 3.0  # the trail fades in over this much simulated time
@@ -41,6 +42,23 @@ _DEFAULT_MOUNTS = {
     "ultrasonic": (0.0, 8.0, "forward"),
     "infrared": (0.0, 8.0, "forward"),
 }
+
+
+def sensor_device(kind: str) -> type[LegoSensor]:
+    """The device class that says how a sensor of `kind` is drawn (devices/sensor.py: LABEL, HOUSING,
+    FLOOR_SPOT, beam_cm); a kind this ev3sim2d does not know (a trace from a plug-in that is not installed
+    here) is drawn as any sensor: a small box, its mode and values in the panel."""
+    return SENSORS.get(kind) or _plugin_device(kind)
+
+
+@functools.cache
+def _plugin_device(kind: str) -> type[LegoSensor]:
+    """A kind not registered yet: an installed plug-in's, else the base (looked for once per kind)."""
+    try:
+        found = sensor_class(kind)
+    except DeviceKindError:
+        found = None
+    return found if found is not None else LegoSensor
 
 
 @dataclass(frozen=True)
@@ -113,8 +131,8 @@ def robot_looks(descriptions: list[dict]) -> list[RobotLook]:
                     m.get("facing", "forward"),
                     float(m.get("aim_deg", 0.0)),
                     float(m.get("spot_cm", 1.5)),
-                    float(m.get("cone_deg", 30.0 if kind == "infrared" else 15.0)),
-                    float(m.get("max_cm", 70.0 if kind == "infrared" else 255.0)),
+                    float(m.get("cone_deg", _option_default(kind, "cone_deg", 15.0))),
+                    float(m.get("max_cm", _option_default(kind, "max_cm", 255.0))),
                 )
             )
         looks.append(
@@ -130,6 +148,12 @@ def robot_looks(descriptions: list[dict]) -> list[RobotLook]:
             )
         )
     return looks
+
+
+def _option_default(kind: str, option: str, otherwise: float) -> float:
+    """The default of a robot-file option of a sensor kind (an old trace does not record it)."""
+    default = sensor_device(kind).OPTIONS.get(option)
+    return default[0] if default is not None else otherwise
 
 
 def robot_colors(own: list[tuple[int, int, int]]) -> list[tuple[int, int, int]]:
@@ -157,12 +181,7 @@ def beam_distance_cm(sensor: SensorLook, reading: tuple[str, list[int]] | None) 
     mode, values = reading
     if not values:
         return None
-    if sensor.kind == "ultrasonic" and mode.startswith(("US-DIST", "US-SI", "US-DC")):
-        value = values[0] / 10
-        return value * 2.54 if mode.endswith("-IN") else value
-    if sensor.kind == "infrared" and mode == "IR-PROX":
-        return values[0] / 100 * sensor.max_cm
-    return None
+    return sensor_device(sensor.kind).beam_cm(mode, values, sensor.max_cm)
 
 
 def _to_world(points, x: float, y: float, heading_deg: float) -> np.ndarray:
@@ -233,7 +252,9 @@ def draw_beam(
     radius = max(3, view.length(1.2))
     cv2.circle(image, tuple(hit), radius << SHIFT, palette.LABEL_BG, -1, cv2.LINE_AA, SHIFT)
     cv2.circle(image, tuple(hit), (radius - 1) << SHIFT, palette.HIT, -1, cv2.LINE_AA, SHIFT)
-    label = f"{distance_cm:.1f} cm" if sensor.kind == "ultrasonic" else f"≈{distance_cm:.0f} cm"
+    label = (
+        f"≈{distance_cm:.0f} cm" if sensor_device(sensor.kind).BEAM_APPROXIMATE else f"{distance_cm:.1f} cm"
+    )
     px, py = hit[0] >> SHIFT, hit[1] >> SHIFT
     # put the label beyond the hit point, away from the robot
     ux, uy = math.cos(direction), -math.sin(direction)
@@ -277,13 +298,14 @@ def _robot_parts(look: RobotLook) -> tuple[np.ndarray, tuple[tuple[str, str, int
     for sensor in look.sensors:
         sx, sy = sensor.offset_cm
         aim = math.radians(sensor.aim_deg)
-        if sensor.kind == "touch":
+        housing = sensor_device(sensor.kind).HOUSING
+        if housing == "bumper":
             add(
                 "bumper",
                 sensor.port,
                 _rotated_box(sx - 0.6 * math.cos(aim), sy - 0.6 * math.sin(aim), 1.2, 4.0, aim),
             )
-        elif sensor.kind in ("ultrasonic", "infrared"):
+        elif housing == "eyes":
             add("housing", sensor.port, _rotated_box(sx - math.cos(aim), sy - math.sin(aim), 2.0, 5.0, aim))
             for eye in (-1.3, 1.3):
                 add(
@@ -300,7 +322,7 @@ def _robot_parts(look: RobotLook) -> tuple[np.ndarray, tuple[tuple[str, str, int
             add("housing", sensor.port, _box(sx - 1.0, sy - 1.0, sx + 1.0, sy + 1.0))
     add("arrow", "", [(4.0, 0.0), (-ARROW_BACK_CM, 2.6), (-0.3, 0.0), (-ARROW_BACK_CM, -2.6)])
     for sensor in look.sensors:
-        if sensor.kind in SPOT_KINDS and sensor.facing == "down":  # (facing forward it reads a wall)
+        if sensor_device(sensor.kind).FLOOR_SPOT and sensor.facing == "down":  # (facing forward: a wall)
             sx, sy = sensor.offset_cm
             h = sensor.spot_cm / 2
             add("spot", sensor.port, _box(sx - h, sy - h, sx + h, sy + h))

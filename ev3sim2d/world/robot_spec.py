@@ -23,59 +23,30 @@ from .yaml_source import Fields, Node, load_yaml_text, read_text_file
 
 MOTOR_PORTS = ("outA", "outB", "outC", "outD")
 SENSOR_PORTS = ("in1", "in2", "in3", "in4")
-MOTOR_KINDS = ("large", "medium")
-SENSOR_KINDS = ("touch", "gyro", "color", "ultrasonic", "infrared", "nxt-light", "nxt-sound")
 FACINGS = ("forward", "down")
 WHEELS = ("left", "right")
 MOUNTINGS = ("normal", "reversed")
 
-SENSOR_OPTIONS: dict[str, dict[str, tuple[float, str, str]]] = {
-    "touch": {"bumper_cm": (2.0, "cm", "bumper width across its tip: a wall anywhere on it presses it")},
-    "gyro": {},
-    "color": {"spot_cm": (1.5, "cm", "diameter of the floor spot the sensor sees")},
-    "ultrasonic": {
-        "cone_deg": (15.0, "degrees", "full opening angle of the sound beam"),
-        "max_cm": (255.0, "cm", "farthest distance measured; beyond it the sensor reads max_cm"),
-    },
-    "infrared": {
-        "cone_deg": (30.0, "degrees", "full opening angle of the infrared beam"),
-        "max_cm": (70.0, "cm", "distance that reads as proximity 100"),
-    },
-    "nxt-light": {"spot_cm": (2.0, "cm", "diameter of the floor spot the sensor sees")},
-    "nxt-sound": {},
-}
-"""Kind -> option -> (default, unit, meaning): the extra keys a sensor of that kind may have."""
 
-MODELLED_FACINGS = {  # which way each kind of sensor may face: what its device measures (devices/*.py)
-    "touch": ("forward",),
-    "gyro": ("down", "forward"),  # it measures the robot's turns, whichever way it is fitted
-    "color": ("down", "forward"),  # the floor's colour, or the light a wall ahead reflects
-    "ultrasonic": ("forward",),
-    "infrared": ("forward",),
-    "nxt-light": ("down", "forward"),
-    "nxt-sound": ("down", "forward"),  # it hears all round
-}
-UNMODELLED_FACING = {
-    "touch": "a touch sensor facing down would be pressed by the floor all the time; write `facing: forward`",
-    "ultrasonic": (
-        "an ultrasonic sensor facing down would measure its height above the floor, which ev3sim2d does "
-        "not model (the floor is flat and has no height); write `facing: forward`"
-    ),
-    "infrared": (
-        "an infrared sensor facing down would see the floor, which ev3sim2d does not model; "
-        "write `facing: forward`"
-    ),
-}
+def _sensor_classes():
+    """The devices' registry: which kinds of sensor exist and what each allows is said by its class (kind,
+    facings, options: devices/sensor.py), so a new kind is one device file.  Imported when a robot is read,
+    not with this module: the devices import the world's colours."""
+    from ..devices import registry
 
-DEFAULT_FACING = {
-    "touch": "forward",
-    "gyro": "down",
-    "color": "down",
-    "ultrasonic": "forward",
-    "infrared": "forward",
-    "nxt-light": "down",
-    "nxt-sound": "forward",
-}
+    return registry
+
+
+def __getattr__(name: str):
+    """The kind tables this module once kept, now read from the device classes (for older callers)."""
+    if name == "SENSOR_KINDS":
+        return _sensor_classes().sensor_kinds()
+    if name == "MOTOR_KINDS":
+        return _sensor_classes().MOTORS
+    if name == "SENSOR_OPTIONS":
+        return {kind: dict(cls.OPTIONS) for kind, cls in _sensor_classes().SENSORS.items()}
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 DEFAULT_ROBOT_COLOR = (230, 170, 30)
 """Body colour to draw when a robot file gives none (LEGO yellow)."""
@@ -315,7 +286,7 @@ def _motor(node: Node) -> tuple[MotorSpec, Node]:
         "motor", ("port", "kind", "wheel", "mounted"), "- {port: B, kind: large, wheel: left}"
     )
     port = _port(fields.require("port", "port: B"), MOTOR_PORTS, "motor")
-    kind = _choice(fields, "kind", MOTOR_KINDS, default="large")
+    kind = _choice(fields, "kind", _sensor_classes().MOTORS, default="large")
     wheel_node = fields.get("wheel")
     wheel = None
     if wheel_node is not None and not wheel_node.is_null and wheel_node.text.strip().lower() != "none":
@@ -327,12 +298,23 @@ def _motor(node: Node) -> tuple[MotorSpec, Node]:
 def _sensor(node: Node) -> SensorSpec:
     fields = node.as_fields("sensor", None, "- {port: 3, kind: color, angle_deg: 0, radius_cm: 7}")
     port = _port(fields.require("port", "port: 3"), SENSOR_PORTS, "sensor")
-    kind = _choice(fields, "kind", SENSOR_KINDS)
-    option_table = SENSOR_OPTIONS[kind]
+    registry = _sensor_classes()
+    kind = _choice(fields, "kind", registry.sensor_kinds())
+    try:
+        device = registry.sensor_class(kind)
+    except (
+        registry.DeviceKindError
+    ) as error:  # a plug-in that does not load: name it at the robot file's line
+        raise fields.get("kind").error(str(error)) from None
+    option_table = device.OPTIONS
     fields.check_keys(_SENSOR_KEYS + tuple(option_table))
-    facing = _choice(fields, "facing", FACINGS, default=DEFAULT_FACING[kind])
-    if facing not in MODELLED_FACINGS[kind]:
-        raise fields.get("facing").error(UNMODELLED_FACING[kind])
+    facing = _choice(fields, "facing", FACINGS, default=device.FACINGS[0])
+    if facing not in device.FACINGS:
+        hint = device.FACING_HINTS.get(facing) or (
+            f"a {kind} sensor cannot face {facing} in ev3sim2d (its device, {device.__name__}, measures "
+            f"only facing {' or '.join(device.FACINGS)}); write `facing: {device.FACINGS[0]}`"
+        )
+        raise fields.get("facing").error(hint)
     angle = fields.number("angle_deg", default=0.0, unit="degrees", example="angle_deg: 0")
     radius = fields.number("radius_cm", default=0.0, unit="cm", example="radius_cm: 7")
     if radius < 0:
