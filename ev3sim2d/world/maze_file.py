@@ -7,6 +7,7 @@ the line (and column) and what to write instead.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -14,7 +15,7 @@ from .button_press import parse_press
 from .cell import Cell
 from .grid import Grid
 from .grid_text import TextRow, first_non_wall_border_cell, read_text_grid, text_rows
-from .legend import DEFAULT_LEGEND, Legend, LegendEntry, as_legend, legend_from_node
+from .legend import DEFAULT_LEGEND, Legend, LegendEntry, as_entry, as_legend, legend_from_node
 from .pose import Pose
 from .rectangles import Rect, merge_cells, spans_to_rects
 from .region import Region
@@ -418,4 +419,61 @@ def find_maze(name_or_path: str | Path) -> Path:
         None,
         None,
         f"no maze file or shipped maze by this name; shipped mazes: {names}; or give the path of a .yaml file",
+    )
+
+
+# -- writing a new maze file --------------------------------------------------------------------
+
+
+def new_maze_text(
+    grid_text: str,
+    *,
+    cell_cm: float,
+    starts: list[Pose | tuple],
+    legend: Mapping[str, LegendEntry | Cell | str] | None = None,
+    title: str = "",
+    description: str = "",
+    robot: str | None = None,
+) -> str:
+    """The YAML of a new maze file: a text grid (top row first), starts as Poses, (col, row) or
+    (col, row, heading_deg) cells, legend entries beyond the default ones, and a robot file's name."""
+    lines = [f"title: {json.dumps(title)}"] if title else []
+    if description:
+        lines.append(f"description: {json.dumps(description)}")
+    lines.append(f"cell_cm: {cell_cm:g}")
+    if legend:
+        lines.append("legend:")
+        for char, value in legend.items():
+            lines.append(f"  {json.dumps(char)}: {json.dumps(_entry_mapping(as_entry(value)))}")
+    lines.append("grid: |")
+    lines += [f"  {row.text}" for row in text_rows(grid_text)]
+    lines.append("start:")
+    for start in starts:
+        fields = ", ".join(f"{key}: {json.dumps(value)}" for key, value in _start_mapping(start).items())
+        lines.append(f"  - {{{fields}}}")
+    if robot:
+        lines.append(f"robot: {json.dumps(robot)}")
+    return "\n".join(lines) + "\n"
+
+
+def _entry_mapping(entry: LegendEntry) -> dict:
+    cell = entry.cell
+    mapping: dict = {"wall": True} if cell.wall else {}
+    if cell.color is not None:
+        mapping["color"] = cell.color
+    if cell.shade is not None:
+        mapping["shade"] = cell.shade
+    if entry.region is not None:
+        mapping["region"] = entry.region
+    return mapping
+
+
+def _start_mapping(start: Pose | tuple) -> dict:
+    if isinstance(start, Pose):
+        return {"x_cm": start.x_cm, "y_cm": start.y_cm, "heading_deg": start.heading_deg}
+    if isinstance(start, tuple | list) and len(start) in (2, 3):
+        heading = start[2] if len(start) == 3 else 0
+        return {"cell": [int(start[0]), int(start[1])], "heading_deg": heading}
+    raise ValueError(
+        f"a start is a Pose(x_cm, y_cm, heading_deg), a (col, row) cell or (col, row, heading_deg), got {start!r}"
     )
