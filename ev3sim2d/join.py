@@ -12,6 +12,7 @@ messages always are.
 from __future__ import annotations
 
 import socket
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -48,8 +49,21 @@ def parse_address(text: str) -> tuple[str, int]:
     return host, int(port)
 
 
-def connect(address: str, timeout_s: float = CONNECT_TIMEOUT_S) -> socket.socket:
+def connect(address: str, timeout_s: float = CONNECT_TIMEOUT_S, wait_s: float = 0.0) -> socket.socket:
+    """A TCP connection to the world; wait_s: how long to keep trying while nothing listens there yet
+    (students who start before their teacher serves)."""
     host, port = parse_address(address)
+    give_up = time.monotonic() + wait_s
+    while True:
+        try:
+            return _connect(host, port, timeout_s)
+        except JoinError as err:
+            if not err.args[0].startswith("no world is served") or time.monotonic() >= give_up:
+                raise
+            time.sleep(0.2)
+
+
+def _connect(host: str, port: int, timeout_s: float) -> socket.socket:
     try:
         sock = socket.create_connection((host, port), timeout=timeout_s)
     except ConnectionRefusedError:
@@ -108,13 +122,15 @@ def run_joined(
     token: str | None = None,
     echo: Callable[[float, str, str], None] | None = None,
     log: Callable[[str], None] = lambda text: None,
+    wait_s: float = 0.0,
 ) -> JoinResult:
     """Join the world at address with the program, run it in a brick here until the run is over.
 
-    echo(t_s, stream, text) shows each printed line as it comes; log(text) says what happens."""
+    echo(t_s, stream, text) shows each printed line as it comes; log(text) says what happens; wait_s: how
+    long to keep trying to connect while no world is served there yet."""
     program = Program(program_file)  # ProgramError: the caller reports it (nothing is sent)
     path = program.path.resolve()
-    sock = connect(address)
+    sock = connect(address, wait_s=wait_s)
     try:
         net, seat = take_seat(sock, token, robot, name or path.stem, path, str(program_file))
     except BaseException:
@@ -127,7 +143,9 @@ def run_joined(
     brick, read_paths = start_brick([path.parent])
     try:
         brick.channel.send(
-            brick_welcome(brick, read_paths, path, seat["robot"], seat["tick_us"], seat["seed"], _limits(seat))
+            brick_welcome(
+                brick, read_paths, path, seat["robot"], seat["tick_us"], seat["seed"], _limits(seat)
+            )
         )
         return _relay(brick, net, seat, echo)
     finally:

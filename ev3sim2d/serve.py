@@ -6,8 +6,8 @@ and its connection is a TCP socket the lobby seated (lobby.py).  Lockstep over
 virtual time (session.py) makes a slow or distant brick change the wall time
 only: the same programs give the same run as `ev3sim2d run`, fingerprint for
 fingerprint.  A brick that goes away, stalls or breaks the protocol is dropped
-and its robot stays where it is, as after any brick that stopped; the others
-run on.  At the end each brick still connected is told how the run ended.
+and its robot is left as after any program that ended (Simulation.let_go); the
+others run on.  At the end each brick still connected is told how the run ended.
 """
 
 from __future__ import annotations

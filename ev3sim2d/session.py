@@ -8,7 +8,9 @@ touch only its own robot's devices, so the bricks' ops between two ticks can
 be applied brick by brick: the run depends only on what the programs do, never
 on which process was faster.  The simulator never waits for a brick that is
 ahead; a brick that is behind and silent for `hang_after_s` of real time (a
-program spinning without using the robot or the clock) is stopped.
+program spinning without using the robot or the clock) is stopped.  A robot whose
+program ended (or whose brick was dropped) while others run on is let go, as an
+EV3's brickman does when a program ends: its motors are reset (Simulation.let_go).
 """
 
 from __future__ import annotations
@@ -171,6 +173,7 @@ class Session:
         if len(ports) == 1:
             return self._run_one(ports[0])
         limit = self.limit_us
+        let_go: set[int] = set()
         while True:
             live = [p for p in ports if not p.finished]
             for port in live:
@@ -178,6 +181,10 @@ class Session:
             live = [p for p in live if not p.finished]
             if not live:
                 return
+            for port in ports:  # (ended here, or dropped while waiting)
+                if port.finished and port.index not in let_go:
+                    let_go.add(port.index)
+                    self.sim.let_go(port.index)
             behind = [p for p in live if p.marker is None]
             if not behind:
                 target = min(p.marker for p in live)

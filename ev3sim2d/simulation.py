@@ -69,6 +69,7 @@ class Simulation:
         self.robots = [
             Robot(name, spec, pose, self.physics, floor, self.rng, ambient) for name, spec, pose in robots
         ]
+        self._let_go: dict[int, dict] = {}  # robots whose programs ended while others ran: how they were
         for robot in self.robots:
             if self.physics.overlaps_wall(robot.body):
                 p = robot.start
@@ -127,9 +128,23 @@ class Simulation:
         self.trace.sensor_samples = samples
         # the last tick may come before the program's last commands (a tank.off() just before it ends)
         self.trace.end_motors = [
-            {"driving": robot.driving(), "states": self.motor_states(robot)} for robot in self.robots
+            self._let_go.get(i) or self._motors_now(robot) for i, robot in enumerate(self.robots)
         ]
         return self.trace
+
+    def _motors_now(self, robot: Robot) -> dict:
+        return {"driving": robot.driving(), "states": self.motor_states(robot)}
+
+    def let_go(self, index: int) -> None:
+        """Robot `index`'s program ended (or its brick was dropped) while other robots' programs run on.
+
+        As brickman does on an EV3 when a program it started ends, the robot's motors are reset: they
+        stop and coast, and their settings go back to the defaults.  How they were when the program
+        ended is what the trace's end_motors keeps (what the program left them doing)."""
+        robot = self.robots[index]
+        self._let_go[index] = self._motors_now(robot)
+        for motor in robot.motors.values():
+            motor.write("command", "reset")
 
     def tick(self, now_us: int) -> None:
         """Advance the world by one tick ending at now_us, and record it."""

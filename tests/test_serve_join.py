@@ -90,7 +90,9 @@ class Served:
                 found = re.search(pattern, self.log())
                 if found:
                     return found
-                raise AssertionError(f"serve ended ({self.process.returncode}) before {pattern!r}:\n{self.log()}")
+                raise AssertionError(
+                    f"serve ended ({self.process.returncode}) before {pattern!r}:\n{self.log()}"
+                )
             time.sleep(0.02)
         raise AssertionError(f"no {pattern!r} in serve's log:\n{self.log()}")
 
@@ -228,7 +230,7 @@ def test_a_joined_program_that_fails_is_shown_with_its_line_on_its_computer_only
     other_out, other_err = other.communicate(timeout=120)
     served.finish()
     assert failing.returncode == 1
-    assert "ZeroDivisionError" in err and f"{broken}\", line 3" in err
+    assert "ZeroDivisionError" in err and f'{broken}", line 3' in err
     assert "robot 1: ZeroDivisionError: division by zero" in err
     assert other.returncode == 0 and "ZeroDivisionError" not in other_out + other_err.split("the run:")[0]
 
@@ -340,3 +342,20 @@ def test_join_says_clearly_when_no_world_is_there(tmp_path):
             _command("join", address, str(program)), capture_output=True, text=True, env=_env(), cwd=tmp_path
         )
         assert done.returncode == 2 and message in done.stderr
+
+
+def test_a_student_who_joins_before_the_world_is_served_waits_for_it(tmp_path):
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    early = _join(f"127.0.0.1:{port}", _program(tmp_path, "t.py", TALKER.format(seconds=1)), "--wait", "60",
+                  cwd=tmp_path)  # fmt: skip
+    time.sleep(1.0)  # the teacher is late
+    assert early.poll() is None, "join gave up at once"
+    served = Served(tmp_path, "--maze", "line-shared", "--robots", "1", "--time", "3", "--port", str(port))
+    try:
+        out, err = early.communicate(timeout=120)
+        assert early.returncode == 0 and "] done" in out, err
+        assert served.finish() == 0
+    finally:
+        served.stop()

@@ -21,6 +21,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot", type=int, metavar="K", help="which robot (1, 2, ...; default: a free one)")
     parser.add_argument("--name", help="your name, as the world shows it (default: the program's name)")
     parser.add_argument("--token", help="the join token `ev3sim2d serve` printed (needed off this computer)")
+    parser.add_argument(
+        "--wait",
+        type=float,
+        default=0.0,
+        metavar="S",
+        help="keep trying to connect for S seconds while no world is served there yet (default: 0)",
+    )
     parser.add_argument("--quiet", action="store_true", help="do not show what the program prints")
 
 
@@ -51,6 +58,7 @@ def main(args) -> int:
             args.token,
             None if args.quiet else _echo,
             _log,
+            args.wait,
         )
     except ProgramError as err:
         return fail(str(err), EXIT_PROGRAM_ERROR)
