@@ -7,6 +7,7 @@ error at once, with the line, before any process is started.
 
 from __future__ import annotations
 
+import traceback
 from pathlib import Path
 
 
@@ -29,6 +30,17 @@ class Program:
             compile(self.source, str(self.path), "exec", dont_inherit=True)
         except SyntaxError as exc:
             where = f"{exc.filename}, line {exc.lineno}" if exc.lineno else str(self.path)
-            raise ProgramError(f"{where}: {exc.msg}\n    {(exc.text or '').rstrip()}") from None
+            raise ProgramError(f"{where}: {exc.msg}\n{source_with_caret(exc)}") from None
         except ValueError as exc:  # source with a null byte
             raise ProgramError(f"{path}: {exc}") from None
+
+
+def source_with_caret(exc: SyntaxError) -> str:
+    """The line of a syntax error and a caret (^) under where it is, as Python shows them."""
+    shown = traceback.format_exception_only(SyntaxError, exc)[
+        1:-1
+    ]  # between "File ..., line N" and the message
+    lines = [line.rstrip() for part in shown for line in part.splitlines() if line.strip()]
+    if not lines and exc.text:
+        lines = [f"    {exc.text.strip()}"]
+    return "\n".join(lines)

@@ -177,6 +177,18 @@ def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
     return str(copy)
 
 
+def _cannot_start(submission: Submission) -> str | None:
+    """Why the submission's program cannot be started in any variant (a syntax error, with its line and a
+    caret), or None.  The program is only read and compiled here, never run."""
+    from ..program import Program, ProgramError
+
+    try:
+        Program(submission.entry)
+    except ProgramError as err:
+        return str(err)
+    return None
+
+
 def grade(
     lesson: Lesson,
     submissions: list[Submission],
@@ -229,6 +241,12 @@ def grade(
                 submission.name, key, problem=submission.problem, max_points=lesson.max_score
             )
             done[index] = pending_result
+            continue
+        unstartable = _cannot_start(submission)
+        if unstartable is not None:  # a syntax error: said once, with its caret, not once per variant
+            done[index] = SubmissionResult(
+                submission.name, key, problem=unstartable, max_points=lesson.max_score, problem_status="error"
+            )
             continue
         pending[index] = _Pending(submission, key)
         for v, variant in enumerate(lesson.variants):
