@@ -14,6 +14,11 @@ In a lesson with several robots each check's result names the robot it looked at
 A secondary check that passed but earned nothing because a goal check of its variant failed is `gated`
 (and not passed); a hidden variant's result is named "hidden variant N" and holds no times or numbers
 (see scoring.py).
+
+What the student's program printed in a visible variant is kept (`output`), trimmed to the first
+OUTPUT_HEAD and the last OUTPUT_TAIL lines, each cut at OUTPUT_LINE_CHARS characters; when anything was
+left out `output_trimmed` is true and `output_lines_dropped` says how many lines.  A hidden variant keeps
+none of it (`output` is null): a program could print what it senses of the hidden world.
 """
 
 from __future__ import annotations
@@ -21,6 +26,9 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 STATUS_ORDER = ("crashed", "memory", "output", "timeout", "error", "missing", "graded")
+OUTPUT_HEAD = 100  # printed lines kept from the start of a run
+OUTPUT_TAIL = 100  # and from its end
+OUTPUT_LINE_CHARS = 300  # a longer line is cut, and ends with "…"
 
 
 @dataclass
@@ -49,6 +57,11 @@ class VariantResult:
     message: str  # how the run ended, one line
     sim_time_s: float | None
     checks: list[CheckResult] = field(default_factory=list)
+    # what the student's program printed, "12.50 s  text" a line (stderr lines: "12.50 s! text");
+    # None in a hidden variant, or when the run left no record of it
+    output: list[str] | None = None
+    output_trimmed: bool = False
+    output_lines_dropped: int = 0
 
     @property
     def score(self) -> float:
@@ -81,8 +94,30 @@ class VariantResult:
     @classmethod
     def from_dict(cls, data: dict) -> VariantResult:
         checks = [CheckResult(**c) for c in data.get("checks", [])]
-        keys = ("name", "hidden", "status", "message", "sim_time_s")
-        return cls(**{k: data.get(k) for k in keys}, checks=checks)
+        keys = ("name", "hidden", "status", "message", "sim_time_s", "output")
+        return cls(
+            **{k: data.get(k) for k in keys},
+            checks=checks,
+            output_trimmed=bool(data.get("output_trimmed", False)),
+            output_lines_dropped=int(data.get("output_lines_dropped", 0)),
+        )
+
+
+def printed_output(lines, robot: int, dropped_before: int = 0) -> tuple[list[str], bool, int]:
+    """A run's printed lines (`OutputLine`s) of one robot, trimmed as the module docstring says: the lines
+    kept, whether any were left out, and how many (`dropped_before`: lines the run itself did not keep)."""
+    own = [line for line in lines if line.robot == robot]
+    kept = own if len(own) <= OUTPUT_HEAD + OUTPUT_TAIL else own[:OUTPUT_HEAD] + own[-OUTPUT_TAIL:]
+    dropped = len(own) - len(kept) + dropped_before
+    text = []
+    cut = False
+    for line in kept:
+        words = line.text.rstrip("\n")
+        if len(words) > OUTPUT_LINE_CHARS:
+            words, cut = words[: OUTPUT_LINE_CHARS - 1] + "…", True
+        mark = "!" if line.stream == "stderr" else " "
+        text.append(f"{line.t_s:.2f} s{mark} {words}")
+    return text, cut or dropped > 0, dropped
 
 
 @dataclass
@@ -92,8 +127,9 @@ class SubmissionResult:
     submission: str
     key: str
     variants: list[VariantResult] = field(default_factory=list)
-    problem: str | None = None  # set when there was nothing to run
+    problem: str | None = None  # set when there was nothing to run, or the program could not be started
     max_points: float = 0.0  # used when there are no variant results (nothing to run)
+    problem_status: str = "missing"  # the status a problem gives: missing, or error (a syntax error)
 
     @property
     def score(self) -> float:
@@ -106,7 +142,7 @@ class SubmissionResult:
     @property
     def status(self) -> str:
         if self.problem is not None:
-            return "missing"
+            return self.problem_status
         statuses = {v.status for v in self.variants}
         return next((s for s in STATUS_ORDER if s in statuses), "graded")
 
@@ -118,7 +154,7 @@ class SubmissionResult:
         """The first thing that went wrong, as one line for the table."""
         line = ""
         if self.problem:
-            line = self.problem
+            line = self.problem.splitlines()[0]  # a syntax error's first line: where, and what
         else:
             for variant in self.variants:
                 failed = variant.failed_checks()
@@ -152,6 +188,7 @@ class SubmissionResult:
             variants=[VariantResult.from_dict(v) for v in data.get("variants", [])],
             problem=data.get("problem"),
             max_points=float(data.get("max_score", 0.0)),
+            problem_status=data.get("status", "missing") if data.get("problem") is not None else "missing",
         )
 
 

@@ -35,7 +35,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from ..brick_process import become_subreaper, console_tail, kill_orphans
-from .result import VariantResult
+from .result import VariantResult, printed_output
 
 RESULT_FILE = "result.json"
 TRACE_FILE = "trace.npz"
@@ -249,6 +249,11 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
     except Exception:  # noqa: BLE001 - a check's bug, not the program's: the parent says so loudly
         traceback.print_exc()
         return EXIT_CHECK_ERROR
+    if not variant.hidden:  # what the program printed: a teacher sees why it did what it did (result.py)
+        dropped = int(result.trace.result.get("dropped_output_lines") or 0)
+        scored.output, scored.output_trimmed, scored.output_lines_dropped = printed_output(
+            result.trace.output, variant.student_index, dropped
+        )
     kept = job.keep_trace and not scored.passed
     if kept:
         result.trace.save(folder / TRACE_FILE)
