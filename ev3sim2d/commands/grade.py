@@ -6,22 +6,40 @@ import argparse
 import shutil
 import sys
 import tempfile
+import traceback
 from pathlib import Path
 
 from ..grading.grader import default_jobs, grade
 from ..grading.lesson import list_shipped_lessons, load_lesson
-from ..grading.report import details, score_text, table, write_csv, write_json, write_junit
+from ..grading.report import (
+    details,
+    score_text,
+    table,
+    write_classroom,
+    write_csv,
+    write_json,
+    write_junit,
+)
 from ..grading.safe_text import one_line
 from ..grading.submission import DEFAULT_ENTRY, find_submissions
 from ..grading.worker import CheckError
 from ..world.source_error import WorldFileError
-from .exit_codes import EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, fail
+from .exit_codes import EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 
 NAME = "grade"
 HELP = "grade programs in a lesson: one file, a student's folder, or a folder of a whole class"
+EPILOG = f"""exit status:
+  {EXIT_OK}    every program scored at least --pass-percent (default: full marks)
+  {EXIT_PROGRAM_ERROR}    some program scored less (in a class: any one of them), or could not be started
+  {EXIT_USAGE}    usage error: a wrong option, a missing lesson or folder, a broken lesson or check
+  {EXIT_INTERNAL}    internal error: a bug in ev3sim2d (the traceback is printed; please report it)
+  {130}  interrupted (Ctrl+C); run the same command again with --json to go on
+  141  the output's reader went away (e.g. `ev3sim2d grade ... | head`)"""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.epilog = EPILOG
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
     lessons = ", ".join(list_shipped_lessons()) or "none"
     parser.add_argument("lesson", metavar="LESSON", help=f"a lesson folder, or a shipped lesson: {lessons}")
     parser.add_argument(
@@ -46,7 +64,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--junit", metavar="FILE", help="write JUnit XML (one test per variant and check), for CI"
     )
-    parser.add_argument("--csv", metavar="FILE", help="write one CSV row per submission, for the class list")
+    parser.add_argument(
+        "--csv",
+        metavar="FILE",
+        help="write one CSV row per submission, for the class list (UTF-8 with a BOM: Excel opens it as it is)",
+    )
+    parser.add_argument(
+        "--classroom",
+        metavar="FILE",
+        help="a single program: append GitHub Classroom's autograding result (result=BASE64) to FILE, "
+        'in a workflow "$GITHUB_OUTPUT": points out of the lesson\'s max (docs/github-classroom.md)',
+    )
     parser.add_argument(
         "--videos",
         metavar="DIR",
@@ -79,12 +107,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=100.0,
         metavar="P",
-        help="with a single program, exit with status 1 when it scores below P%% (default: 100)",
+        help="exit with status 1 when a program (in a class: any one) scores below P%% (default: 100)",
     )
     parser.add_argument("--quiet", action="store_true", help="no progress lines while grading")
 
 
 def main(args) -> int:
+    try:
+        return _grade(args)
+    except KeyboardInterrupt:
+        print("ev3sim2d: grading interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except (BrokenPipeError, SystemExit):
+        raise  # the command line's own (cli.py)
+    except Exception:  # noqa: BLE001 - our bug: said loudly, with its own exit status
+        traceback.print_exc()
+        print("ev3sim2d: internal error: this is a bug in ev3sim2d; please report it", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def _grade(args) -> int:
     if args.jobs is not None and args.jobs < 1:
         return fail("--jobs must be at least 1")
     if args.hidden_videos and not args.videos:
@@ -102,6 +144,8 @@ def main(args) -> int:
     submissions = find_submissions(args.programs, args.entry)
     if not submissions:
         return fail("no programs to grade")
+    if args.classroom and len(submissions) != 1:
+        return fail(f"--classroom grades a single program; {len(submissions)} were found", EXIT_USAGE)
 
     total = len(submissions)
     finished = {"n": 0}
@@ -148,6 +192,8 @@ def main(args) -> int:
             write_junit(args.junit, grading)
         if args.csv:
             write_csv(args.csv, grading)
+        if args.classroom:
+            write_classroom(args.classroom, grading, args.pass_percent)
     except OSError as err:
         return fail(f"could not write the results: {err}")
 
@@ -161,12 +207,17 @@ def main(args) -> int:
             f"ev3sim2d: {grading.reused} result(s) taken from {args.json} (unchanged submissions)",
             file=sys.stderr,
         )
-    if len(grading.results) == 1:
-        result = grading.results[0]
-        percent = 100.0 * result.score / result.max_score if result.max_score else 0.0
-        if percent + 1e-9 < args.pass_percent:
-            return EXIT_PROGRAM_ERROR
-    return EXIT_OK
+    below = [r for r in grading.results if _percent(r) + 1e-9 < args.pass_percent]
+    if below and len(grading.results) > 1 and not args.quiet:
+        print(
+            f"ev3sim2d: {len(below)} of {len(grading.results)} submission(s) scored below {args.pass_percent:g}%",
+            file=sys.stderr,
+        )
+    return EXIT_PROGRAM_ERROR if below else EXIT_OK
+
+
+def _percent(result) -> float:
+    return 100.0 * result.score / result.max_score if result.max_score else 0.0
 
 
 def _keep_failed_runs(folder: Path, failed_runs: list[tuple[str, str, Path]], quiet: bool) -> None:

@@ -1,4 +1,9 @@
-"""Grading results for people and machines: a terminal table, per-check details, JSON, JUnit XML and CSV.
+"""Grading results for people and machines: a terminal table, per-check details, JSON, JUnit XML, CSV, and
+GitHub Classroom's autograding result.
+
+JUnit XML uses only the attributes of the JUnit XSD that CI systems read (`JUNIT_ATTRIBUTES`); points and
+details are in each test case's `<system-out>`.  The CSV is UTF-8 with a byte order mark, so that Excel
+opens it with its accents and names right.
 
 Hidden variants appear as "hidden variant N" with their score and what went wrong in words (the
 results hold nothing more of them, see scoring.py); a secondary check that earned nothing because the
@@ -7,8 +12,12 @@ goal was not met is marked `----`, and skipped in JUnit.
 
 from __future__ import annotations
 
+import base64
 import csv
+import json
 import os
+import socket
+import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -18,6 +27,15 @@ from .result import SubmissionResult, VariantResult
 from .safe_text import one_line, printable, spreadsheet_cell
 
 FAILURE_WIDTH = 70
+CSV_ENCODING = "utf-8-sig"  # with a BOM: Excel reads the file as UTF-8 only when it starts with one
+JUNIT_ATTRIBUTES = {  # all the attributes written: those of the JUnit XSD (Jenkins' junit-10.xsd)
+    "testsuites": ("name", "tests", "failures", "errors", "skipped", "time"),
+    "testsuite": ("name", "tests", "failures", "errors", "skipped", "time", "timestamp", "hostname", "id"),
+    "testcase": ("name", "classname", "time"),
+    "failure": ("message", "type"),
+    "error": ("message", "type"),
+    "skipped": ("message",),
+}
 
 
 def _points(value: float) -> str:
@@ -86,7 +104,7 @@ def details(result: SubmissionResult) -> str:
     """Every variant and check of one submission, as a student reads it."""
     lines = [f"{result.submission}: {score_text(result)} ({result.status})"]
     if result.problem:
-        lines.append(f"  {result.problem}")
+        lines += [f"  {line}" for line in result.problem.splitlines()]
     for variant in result.variants:
         lines += variant_details(variant)
     return printable("\n".join(lines))
@@ -96,18 +114,34 @@ def write_json(path: str | Path, grading: Grading) -> None:
     write_results(Path(path), grading.lesson, grading.results)
 
 
-def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTree:
+def _check_text(variant: VariantResult, check) -> str:
+    """A test case's <system-out>: its points and what the check found."""
+    points = f"{_points(check.points)}/{_points(check.max_points)} points"
+    goal = ", a goal check" if check.goal else ""
+    robot = f", robot: {check.robot}" if check.robot else ""
+    run = hidden_summary(variant) if variant.hidden else variant.message
+    return f"{points}{goal}{robot}\n{check.message}\nthe run: {run}"
+
+
+def junit_tree(
+    lesson: Lesson, results: list[SubmissionResult], wall_s: float = 0.0, timestamp: float | None = None
+) -> ET.ElementTree:
     """A <testsuites> with one <testsuite> per submission and one <testcase> per variant and check."""
     suites = ET.Element("testsuites", name=f"ev3sim2d {lesson.id}")
+    stamp = time.strftime("%Y-%m-%dT%H:%M:%S", time.localtime(timestamp))
+    host = socket.gethostname() or "localhost"
     total_tests = total_failures = total_errors = total_skipped = 0
-    for result in results:
-        suite = ET.SubElement(suites, "testsuite", name=result.submission)
+    for number, result in enumerate(results):
+        suite = ET.SubElement(
+            suites, "testsuite", name=result.submission, id=str(number), timestamp=stamp, hostname=host
+        )
         tests = failures = errors = skipped = 0
         if result.problem:
             case = ET.SubElement(
                 suite, "testcase", classname=f"{lesson.id}.{result.submission}", name="program"
             )
-            ET.SubElement(case, "error", message=result.problem, type="missing")
+            first = result.problem.splitlines()[0]
+            ET.SubElement(case, "error", message=first, type=result.status).text = result.problem
             tests, errors = 1, 1
         for variant in result.variants:
             for check in variant.checks:
@@ -118,10 +152,8 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
                     classname=f"{lesson.id}.{variant.name}",
                     name=check.name,
                 )
-                case.set("points", _points(check.points))
-                case.set("max_points", _points(check.max_points))
                 if check.passed:
-                    ET.SubElement(case, "system-out").text = check.message
+                    pass
                 elif check.gated:
                     skipped += 1
                     ET.SubElement(case, "skipped", message=check.message)
@@ -132,15 +164,20 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
                     ).text = check.message
                 else:
                     errors += 1
-                    ET.SubElement(
-                        case, "error", message=check.message, type=variant.status
-                    ).text = variant.message
-        suite.set("tests", str(tests))
-        suite.set("failures", str(failures))
-        suite.set("errors", str(errors))
-        suite.set("skipped", str(skipped))
-        suite.set("score", _points(result.score))
-        suite.set("max_score", _points(result.max_score))
+                    ET.SubElement(case, "error", message=check.message, type=variant.status).text = (
+                        variant.message if not variant.hidden else hidden_summary(variant)
+                    )
+                ET.SubElement(case, "system-out").text = _check_text(variant, check)
+        for name, value in (
+            ("tests", tests),
+            ("failures", failures),
+            ("errors", errors),
+            ("skipped", skipped),
+        ):
+            suite.set(name, str(value))
+        ET.SubElement(
+            suite, "system-out"
+        ).text = f"{result.submission}: {score_text(result)} points ({result.status})"
         total_tests, total_failures, total_errors, total_skipped = (
             total_tests + tests,
             total_failures + failures,
@@ -151,6 +188,7 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
     suites.set("failures", str(total_failures))
     suites.set("errors", str(total_errors))
     suites.set("skipped", str(total_skipped))
+    suites.set("time", f"{wall_s:.3f}")
     for element in suites.iter():  # a program's words, made fit for XML
         if element.text:
             element.text = printable(element.text)
@@ -163,7 +201,7 @@ def junit_tree(lesson: Lesson, results: list[SubmissionResult]) -> ET.ElementTre
 def write_junit(path: str | Path, grading: Grading) -> None:
     _replace(
         Path(path),
-        lambda p: junit_tree(grading.lesson, grading.results).write(
+        lambda p: junit_tree(grading.lesson, grading.results, grading.wall_s).write(
             p, encoding="utf-8", xml_declaration=True
         ),
     )
@@ -174,7 +212,7 @@ def write_csv(path: str | Path, grading: Grading) -> None:
     lesson = grading.lesson
 
     def write(part: Path) -> None:
-        with open(part, "w", newline="", encoding="utf-8") as f:
+        with open(part, "w", newline="", encoding=CSV_ENCODING) as f:
             out = csv.writer(f)
             out.writerow(
                 [
@@ -206,6 +244,51 @@ def write_csv(path: str | Path, grading: Grading) -> None:
                 )
 
     _replace(Path(path), write)
+
+
+def classroom_result(grading: Grading, pass_percent: float = 100.0) -> dict:
+    """GitHub Classroom's autograding result of one submission, as classroom-resources/autograding-grading-
+    reporter reads it (version 1, as autograding-command-grader writes it): a test per variant and check
+    with the points it earned, so Classroom's points are the lesson's score out of its max, not all or
+    nothing.  Hidden variants by number only, with their checks' messages (which hold no numbers)."""
+    [result] = grading.results
+    tests = []
+    if result.problem:
+        tests.append(_classroom_test("program", "error", 0, result.problem))
+    for variant in result.variants:
+        for check in variant.checks:
+            status = "pass" if check.passed else "fail" if variant.status in ("graded", "error") else "error"
+            tests.append(
+                _classroom_test(f"{variant.name}: {check.name}", status, check.points, check.message)
+            )
+    percent = 100.0 * result.score / result.max_score if result.max_score else 0.0
+    status = "error" if result.problem else "pass" if percent + 1e-9 >= pass_percent else "fail"
+    return {"version": 1, "status": status, "max_score": _number(result.max_score), "tests": tests}
+
+
+def _classroom_test(name: str, status: str, score: float, message: str) -> dict:
+    return {
+        "name": printable(name),
+        "status": status,
+        "score": _number(score),
+        "message": printable(message),
+        "test_code": "",
+        "filename": "",
+        "line_no": 0,
+        "duration": 0,
+    }
+
+
+def _number(value: float) -> float | int:
+    return int(value) if float(value).is_integer() else round(float(value), 3)
+
+
+def write_classroom(path: str | Path, grading: Grading, pass_percent: float = 100.0) -> None:
+    """Append `result=<base64 JSON>` to path: in a workflow "$GITHUB_OUTPUT", which makes it the step's
+    output `result`, for the autograding reporter (docs/github-classroom.md)."""
+    encoded = base64.b64encode(json.dumps(classroom_result(grading, pass_percent)).encode()).decode()
+    with open(path, "a", encoding="utf-8") as f:
+        f.write(f"result={encoded}\n")
 
 
 def _replace(path: Path, write) -> None:

@@ -37,7 +37,7 @@ def test_one_program_that_passes_exits_0_with_its_details(tmp_path):
     assert "good.py: 10/10 (graded)" in result.stdout and "PASS reach (3/3, goal)" in result.stdout
     assert json.loads((tmp_path / "r.json").read_text())["submissions"][0]["score"] == 10
     assert (tmp_path / "r.xml").read_text().startswith("<?xml")
-    assert (tmp_path / "r.csv").read_text().startswith("submission,status,score")
+    assert (tmp_path / "r.csv").read_bytes().startswith(b"\xef\xbb\xbfsubmission,status,score")  # BOM: Excel
 
 
 def test_one_program_that_fails_exits_1(tmp_path):
@@ -50,12 +50,13 @@ def test_one_program_that_fails_exits_1(tmp_path):
     assert grade_cli(lesson, prog, "--pass-percent", "0").returncode == 0
 
 
-def test_a_class_prints_a_table_and_exits_0(tmp_path):
+def test_a_class_prints_a_table_and_exits_1_when_a_student_misses_marks(tmp_path):
     lesson = write_lesson(tmp_path / "lesson")
     write_program(tmp_path / "class", "alice.py", GOOD)
     write_program(tmp_path / "class", "bob.py", SHORT)
     result = grade_cli(lesson, tmp_path / "class", "--jobs", "2")
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 1, result.stderr
+    assert "1 of 2 submission(s) scored below 100%" in result.stderr
     assert "2 submission(s), 1 with full marks" in result.stdout
     assert "[1/2]" in result.stderr and "[2/2]" in result.stderr
 
@@ -69,7 +70,7 @@ def test_videos_keep_what_happened_in_failed_visible_variants(tmp_path):
     write_program(tmp_path / "class", "alice.py", GOOD)
     write_program(tmp_path / "class", "bob.py", SHORT)
     result = grade_cli(lesson, tmp_path / "class", "--videos", tmp_path / "videos")
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 1, result.stderr  # bob misses marks
     kept = kept_videos(tmp_path / "videos")
     assert not any(name.startswith("alice") for name in kept)
     assert any(name.startswith("bob/room.") for name in kept)
