@@ -53,7 +53,24 @@ def main(argv: list[str] | None = None) -> int:
         _with_fixed_string_hashing()
     args = _parser().parse_args(argv)
     command = next(c for c in COMMANDS if c.NAME == args.command)
-    return command.main(args)
+    try:
+        status = command.main(args)
+        sys.stdout.flush()  # here, where a reader that went away can still be answered quietly
+        return status
+    except BrokenPipeError:
+        return _reader_gone()
+
+
+def _reader_gone() -> int:
+    """The reader of our output went away (`ev3sim2d grade ... | head`): end quietly, as Python's docs on
+    SIGPIPE advise (what is left unflushed goes to devnull, so the exit does not fail again on it), with the
+    status a shell expects of a writer whose reader is gone."""
+    from .commands.exit_codes import EXIT_BROKEN_PIPE
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+    os.close(devnull)
+    return EXIT_BROKEN_PIPE
 
 
 if __name__ == "__main__":
