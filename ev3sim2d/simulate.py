@@ -91,7 +91,8 @@ class SimulationResult:
 
     @property
     def sensors(self) -> dict[str, np.ndarray]:
-        """The first robot's sensors by port ('in3'): the first value it gave, held until the next reading."""
+        """The first robot's sensors by port ('in3'): the first value of each reading as the driver gives it
+        (before python-ev3dev2 scales it: the ultrasonic sensor in mm), held until the next reading."""
         return self.robots[0].sensors
 
     @property
@@ -153,7 +154,7 @@ class SimulationResult:
             return target.read_bytes()
 
     def plot(self, values: Sequence[str] | None = None, path: str | Path | None = None, robot: int = 0):
-        """A matplotlib Figure of timelines against time (default: the sensors read and the motor speeds);
+        """A matplotlib Figure of timelines against time (default: the sensors whose reading changed, and the motors that turned);
         with `path`, also written there as PNG.  Needs matplotlib: pip install 'ev3sim2d[plot]'."""
         from .render.plot import plot
 
