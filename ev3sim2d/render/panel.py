@@ -84,7 +84,8 @@ def sensor_value_text(kind: str, mode: str, values: list[int]) -> str:
         text = " ".join(str(x) for x in values)
     else:
         text = " ".join(f"{x / 10**mode_spec.decimals:.{mode_spec.decimals}f}" for x in values)
-    unit = {"pct": "%", "cm": "cm", "in": "in", "deg": "°"}.get(mode_spec.units, "") if mode_spec else ""
+    units = mode_spec.units if mode_spec else ""
+    unit = {"pct": "%", "cm": "cm", "in": "in", "deg": "°"}.get(units, units)  # (a new kind's: as it says)
     return f"{text} {unit}" if unit and len(values) == 1 else text
 
 
