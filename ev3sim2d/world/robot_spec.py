@@ -5,6 +5,8 @@ wheels), +x points forward, +y to the left.  A sensor sits `radius_cm` from the
 centre in direction `angle_deg` (0 = straight ahead, 90 = left), and looks
 either `down` at the floor or `forward` (turned `aim_deg` from the robot's
 heading, 90 = to the left).  See docs/world-files.md for the file format.
+Which kinds of sensor there are, and the facings and options each allows, their device classes say
+(devices/registry.py; a kind of one's own: docs/devices.md).
 """
 
 from __future__ import annotations
