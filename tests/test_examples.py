@@ -155,6 +155,18 @@ def test_threads():
     assert final["led0:red:brick-status"] == 255
 
 
+def test_sumo(tmp_path):
+    # against a robot that only stands there (coasting), in the ring of mazes/sumo.yaml
+    standing = tmp_path / "standing.py"
+    standing.write_text("import time\ntime.sleep(60)\n")
+    world = load_maze(find_maze("sumo"))
+    result = run_programs([EXAMPLES / "sumo.py", standing], world, time_limit_s=20, hang_after_s=10)
+    assert result.status == "time_limit", result.reason
+    fighter, pushed = result.trace.poses(0)[-1], result.trace.poses(1)[-1]
+    assert pushed[0] > 160, "the standing robot was pushed onto the ring's edge (it started at x 122)"
+    assert world.regions["ring"].contains(*fighter[:2]), "the fighter stayed in the ring"
+
+
 @pytest.mark.parametrize("name", ["drive_square", "odometry", "threads"])
 def test_examples_are_deterministic(name):
     a, _ = run_example(name)
