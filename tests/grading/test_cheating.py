@@ -595,9 +595,11 @@ def _report_problems(step: Step, submissions: list[str]) -> list[str]:
         )
     elif step.timed_out:
         problems.append(f"the grader was still running after {step.wall_s:.0f} s (killed)")
-    if step.rc != 0:
-        problems.append(f"the grader exited with {step.rc}: {step.stderr.strip()[-300:]}")
     results = step.results()
+    # 1: a submission scored below full marks (the cheats do), as `ev3sim2d grade --help` says
+    below = results is not None and any(s["score"] < s["max_score"] for s in results.get("submissions", []))
+    if step.rc != (1 if below else 0):
+        problems.append(f"the grader exited with {step.rc}: {step.stderr.strip()[-300:]}")
     if results is None:
         return [*problems, "the JSON results are missing or unreadable"]
     names = sorted(s["submission"] for s in results.get("submissions", []))
