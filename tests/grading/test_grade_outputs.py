@@ -209,3 +209,15 @@ def test_other_commands_into_a_closed_pipe_end_quietly():
             timeout=300,
         )
         assert "Traceback" not in done.stderr and "BrokenPipe" not in done.stderr, (command, done.stderr)
+
+
+def test_the_docs_say_the_sizes_and_exit_codes_as_they_are():
+    lessons = " ".join((ROOT / "docs" / "lessons.md").read_text().split())
+    assert f"first {OUTPUT_HEAD} and the last {OUTPUT_TAIL} lines" in lessons
+    assert f"cuts a line at {OUTPUT_LINE_CHARS} characters" in lessons
+    from ev3sim2d.commands.exit_codes import EXIT_BROKEN_PIPE, EXIT_INTERNAL, EXIT_USAGE
+
+    assert (
+        f"{EXIT_USAGE} for a usage error" in lessons and f"{EXIT_INTERNAL} for an internal error" in lessons
+    )
+    assert f"{EXIT_BROKEN_PIPE} when the reader of its output went away" in lessons
