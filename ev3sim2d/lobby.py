@@ -30,7 +30,7 @@ JOIN_TIMEOUT_S = 10.0  # a connection says who it is within this much time
 START_TIMEOUT_S = 60.0  # its brick greets within this much time (an interpreter starting on a slow laptop)
 SEND_TIMEOUT_S = 10.0  # a connection that takes no data for this long is gone
 MAX_WAITING = 64  # connections that have not yet said who they are
-MAX_EARLY_MESSAGES = 10_000  # what a brick may send before the run starts (it soon waits for the world)
+MAX_EARLY_BYTES = 16 * 2**20  # what a brick may send before the run starts (it soon waits for the world)
 LOOPBACK = ("127.0.0.1", "::1", "localhost")
 
 
@@ -152,7 +152,7 @@ class Lobby:
                     self._join(guest, message, seat_config)
                 elif guest.greeting is None:
                     self._greet(guest, message)
-                elif len(guest.early) < MAX_EARLY_MESSAGES:
+                elif guest.channel.bytes_in <= MAX_EARLY_BYTES:
                     guest.early.append(message)
                 else:
                     raise ProtocolError("it sent far too much before the run started")

@@ -63,7 +63,8 @@ def check_join(message: list) -> dict:
     if robot is not None and (type(robot) is not int or not 1 <= robot <= 1000):
         raise ProtocolError("the join message's 'robot' must be a robot number (1, 2, ...) or null")
     clean["robot"] = robot
-    clean["name"] = "".join(ch for ch in clean["name"] if ch.isprintable()).strip() or "?"
+    for key in ("name", "program"):  # shown on the teacher's terminal: no escape sequences
+        clean[key] = "".join(ch for ch in clean[key] if ch.isprintable()).strip() or "?"
     return clean
 
 

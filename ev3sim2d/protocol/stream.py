@@ -63,6 +63,7 @@ class Channel:
         self._buffer = bytearray()
         self._start = 0
         self.closed = False
+        self.bytes_in = 0  # bytes read from the socket so far
         self.peer_may_defer = False  # (shared memory only: see SharedChannel)
 
     def fileno(self) -> int:
@@ -126,6 +127,7 @@ class Channel:
         if data is None:
             return False
         self._buffer += data
+        self.bytes_in += len(data)
         return True
 
     def _recv(self, size: int, flags: int) -> bytes | None:
