@@ -74,7 +74,11 @@ class Served:
             cwd=tmp_path,
             env=_env(),
         )
-        self.port = int(self.wait_for(r"serving .* on \S+:(\d+)").group(1))
+        try:
+            self.port = int(self.wait_for(r"serving .* on \S+:(\d+)").group(1))
+        except BaseException:
+            self.stop()
+            raise
         self.address = f"127.0.0.1:{self.port}"
 
     def log(self) -> str:
