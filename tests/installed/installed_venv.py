@@ -1,6 +1,7 @@
 """ev3sim2d as a user installs it: a wheel built by pip from a copy of the sources, installed into a
 fresh virtual environment of its own (no system site-packages; the dependencies come from pip's usual
-sources and cache), and commands run in a folder that is not the checkout.
+sources and cache), then its `plot` extra (matplotlib: a test of a user without it hides it), and
+commands run in a folder that is not the checkout.
 
 `.ci/run` makes one with `python -m tests.installed.installed_venv DIR` and hands it to the tests in
 EV3SIM2D_INSTALLED_VENV; without that variable the tests' fixture makes one the same way, once a session.
@@ -86,7 +87,9 @@ def make(folder: Path) -> InstalledVenv:
     wheel = build_wheel(folder)
     venv = folder / "venv"
     _check([sys.executable, "-m", "venv", str(venv)])
-    _check([str(venv / "bin" / "python"), "-m", "pip", "install", "-q", str(wheel)])
+    pip = [str(venv / "bin" / "python"), "-m", "pip", "install", "-q"]
+    _check([*pip, str(wheel)])  # the README's install
+    _check([*pip, f"{wheel}[plot]"])  # then the `plot` extra docs/python-api.ipynb asks for
     return InstalledVenv(venv, wheel)
 
 
