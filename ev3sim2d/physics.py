@@ -79,6 +79,16 @@ class RobotBody:
     def set_velocity(self, vx: float, vy: float) -> None:
         lib.cpBodySetVelocity(self._cp_body, (vx, vy))
 
+    def place(self, x: float, y: float, heading: float) -> None:
+        """Put the body somewhere else, at rest (a hand that picks the robot up: live runs)."""
+        body = self.body
+        body.position = (x, y)
+        body.angle = heading
+        body.velocity = (0.0, 0.0)
+        body.angular_velocity = 0.0
+        if body.space is not None:
+            body.space.reindex_shapes_for_body(body)
+
     def _unblocked(self, vx: float, vy: float) -> tuple[float, float]:
         """The velocity less its components into the walls the robot touches (other robots are
         pushed: Physics._push)."""
@@ -111,21 +121,32 @@ class Physics:
     def __init__(self, wall_rectangles: list[tuple[float, float, float, float]]) -> None:
         space = pymunk.Space()
         space.iterations = 12
-        for x0, y0, x1, y1 in wall_rectangles:
-            box = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
-            box.collision_type = WALL
-            box.friction = 0.0
-            box.elasticity = 0.0
-            space.add(box)
+        self.space = space
+        self._add_walls(wall_rectangles)
         space.on_collision(ROBOT, WALL, begin=self._begin, separate=self._separate)
         space.on_collision(ROBOT, ROBOT, begin=self._begin, separate=self._separate)
-        self.space = space
         self._cp_space = space._space
         self._query = ffi.new("cpSegmentQueryInfo *")
         self._filters: dict[int, pymunk.ShapeFilter] = {}  # per robot group: what its sensors may see
         self._probes: dict[tuple[int, float], pymunk.Segment] = {}  # touches_segment's query shapes
         self.robots: dict[pymunk.Body, RobotBody] = {}
         self.robot_pairs = 0  # robot-robot contacts now, twice (once from each robot)
+
+    def set_walls(self, wall_rectangles: list[tuple[float, float, float, float]]) -> None:
+        """Replace the walls (a cell edited during a live run)."""
+        self.space.remove(*self._walls)
+        self._add_walls(wall_rectangles)
+
+    def _add_walls(self, wall_rectangles: list[tuple[float, float, float, float]]) -> None:
+        space = self.space
+        self._walls: list[pymunk.Poly] = []
+        for x0, y0, x1, y1 in wall_rectangles:
+            box = pymunk.Poly(space.static_body, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+            box.collision_type = WALL
+            box.friction = 0.0
+            box.elasticity = 0.0
+            space.add(box)
+            self._walls.append(box)
 
     def add_robot(self, outline: list[tuple[float, float]], x: float, y: float, heading: float) -> RobotBody:
         """A robot body around (0, 0) = the middle of its axle, facing +x, placed at (x, y, heading)."""
@@ -143,6 +164,12 @@ class Physics:
         robot = RobotBody(body, shape, group)
         self.robots[body] = robot
         return robot
+
+    def box_touches(self, robot: RobotBody, box: tuple[float, float, float, float]) -> bool:
+        """Whether the robot's body overlaps the rectangle (x0, y0, x1, y1)."""
+        x0, y0, x1, y1 = box
+        probe = pymunk.Poly(None, [(x0, y0), (x1, y0), (x1, y1), (x0, y1)])
+        return any(hit.shape is robot.shape for hit in self.space.shape_query(probe))
 
     def overlaps_wall(self, robot: RobotBody) -> bool:
         return any(hit.shape.collision_type == WALL for hit in self.space.shape_query(robot.shape))

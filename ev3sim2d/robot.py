@@ -153,6 +153,19 @@ class Robot:
                 hold += HOLD_PCT
         self.body.push_pct, self.body.hold_pct = push, hold
 
+    def place(self, x_cm: float, y_cm: float, heading_deg: float) -> float:
+        """Pick the robot up and put it down at (x, y), facing heading_deg (a live run's drag).  The
+        encoders and the gyro do not know: they count on from where they were.  The turn, in radians."""
+        turn = (math.radians(heading_deg) - self.heading_rad + math.pi) % (2 * math.pi) - math.pi
+        heading = self.heading_rad + turn
+        self.body.place(x_cm, y_cm, heading)
+        self.x, self.y, self.heading_rad = x_cm, y_cm, heading
+        self.turn_rate = 0.0
+        for sensor in self.sensors.values():
+            if hasattr(sensor, "zero_rad"):  # a gyro: it counts from its zero, which turns with the robot
+                sensor.zero_rad += turn
+        return turn
+
     def after_step(self, dt: float) -> None:
         """Read back where the body went; the encoders count each wheel's real forward travel."""
         x, y, heading = self.body.pose()

@@ -24,6 +24,7 @@ from .protocol import ProtocolError
 from .session import Session
 from .simulation import Simulation, StartBlocked
 from .trace import OutputLine, Trace
+from .world.pose import Pose
 from .world.robot_spec import RobotSpec
 from .world.world import World
 
@@ -98,8 +99,10 @@ def new_simulation(
     robot: RobotSpec | Sequence[RobotSpec | None] | None,
     seed: int,
     presses: list | None,
+    starts: Sequence[Pose] | None = None,
 ) -> tuple[Simulation, list]:
-    """The world with `count` robots at its first starts, and the run's scripted button presses."""
+    """The world with `count` robots at its first starts (or at `starts`), and the run's scripted button
+    presses."""
     if count > len(world.starts):
         raise ProgramError(
             f"{count} programs but the world '{world.name}' has {len(world.starts)} start pose(s); "
@@ -107,7 +110,8 @@ def new_simulation(
         )
     specs = robot_specs(world, count, robot)
     names = robot_names(count)
-    sim = Simulation(world, [(names[i], specs[i], world.starts[i]) for i in range(count)], seed=seed)
+    starts = list(starts or world.starts)
+    sim = Simulation(world, [(names[i], specs[i], starts[i]) for i in range(count)], seed=seed)
     presses = sorted([*world.buttons, *(presses or ())], key=lambda p: p.at_s)
     sim.trace.world["buttons"] = [[p.button, p.at_s, p.hold_s] for p in presses]
     return sim, presses
@@ -231,7 +235,7 @@ def take_hello(port: BrickPort, message: list) -> None:
         port.gone = "start: the brick did not greet"
 
 
-def _program_error(port: BrickPort, shown: str, real: str) -> dict | None:
+def program_error(port: BrickPort, shown: str, real: str) -> dict | None:
     """The program's error as the brick reported it, checked and with the file named as the user named it
     (shown; real: its path as the brick knows it)."""
     how = port.end or {}
@@ -336,7 +340,7 @@ def run_result(
     ends = []
     error = None
     for port, (name, real), brick in zip(ports, shown, bricks, strict=False):
-        found = _program_error(port, name, real)
+        found = program_error(port, name, real)
         if found is not None and error is None:
             error = found
             if len(shown) > 1:

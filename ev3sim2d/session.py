@@ -57,6 +57,9 @@ class Session:
         self.world_us = 0
         self.next_tick_us = sim.tick_us
         self.interrupted = False
+        self.stop_us: int | None = None  # a stepped run's stop (advance): the world goes no further
+        self.started = False
+        self._let_go: set[int] = set()  # robots let go when their programs ended (Simulation.let_go)
 
     def _step_to(self, target_us: int) -> None:
         """Run the world's ticks up to target_us; after each, the snapshots bricks will need."""
@@ -121,9 +124,7 @@ class Session:
                 return
 
     def run(self) -> None:
-        now = _monotonic()
-        for port in self.ports:
-            port.last_heard = now
+        self._heard_now()
         frozen_before = gc.get_freeze_count()  # a grading worker: what its grader froze before the fork
         gc.freeze()  # the world, the devices, the modules: a collection during the run skips them
         try:
@@ -136,12 +137,47 @@ class Session:
         finally:
             if not frozen_before:  # (a worker ends soon: unfreezing would make it copy the grader's pages)
                 gc.unfreeze()
+        self.finish()
+
+    def _heard_now(self) -> None:
+        now = _monotonic()
+        for port in self.ports:
+            port.last_heard = now
+
+    def finish(self) -> None:
+        """The world to the moment the last brick ended (or the time limit), and every printed line shown."""
         end_us = max((p.time_us for p in self.ports), default=0)
         if self.limit_us is not None:
             end_us = min(end_us, self.limit_us)
         if not self.interrupted:
             self._step_to(max(end_us, self.world_us))
         self._echo(None)
+
+    # ------------------------------------------------------------ a run in steps
+    def advance(self, until_us: int) -> bool:
+        """Run until the world reaches until_us (a live run's pace, a pause, a step), every brick has
+        ended, or the time limit; True when the run is over (then finish() ends it).  A brick is judged
+        hung only by the silence within one call: a pause between calls is no one's fault."""
+        if not self.started:
+            self.started = True
+            self._snapshots(0)
+        self._heard_now()
+        self.stop_us = until_us
+        try:
+            self._run()
+        finally:
+            self.stop_us = None
+        return all(p.finished for p in self.ports) or (
+            self.limit_us is not None and self.world_us >= self.limit_us
+        )
+
+    def _paused_before(self, target_us: int) -> bool:
+        """A stepped run (advance) stops where it was asked to: the world to that moment, not past it."""
+        if self.stop_us is None or target_us <= self.stop_us:
+            return False
+        if self.stop_us > self.world_us:
+            self._step_to(self.stop_us)
+        return True
 
     def _run_one(self, port: BrickPort) -> None:
         """_run for one brick (the common case), without the bookkeeping of several."""
@@ -157,6 +193,8 @@ class Session:
                 continue
             if limit is not None and target >= limit:
                 return self._stop_at_limit([port])
+            if self._paused_before(target):
+                return
             self._step_to(target)
             port.marker = None
 
@@ -173,7 +211,7 @@ class Session:
         if len(ports) == 1:
             return self._run_one(ports[0])
         limit = self.limit_us
-        let_go: set[int] = set()
+        let_go = self._let_go
         while True:
             live = [p for p in ports if not p.finished]
             for port in live:
@@ -190,6 +228,8 @@ class Session:
                 target = min(p.marker for p in live)
                 if limit is not None and target >= limit:
                     return self._stop_at_limit(live)
+                if self._paused_before(target):
+                    return
                 self._step_to(target)
                 for port in live:
                     if port.marker == target:

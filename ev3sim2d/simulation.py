@@ -16,6 +16,7 @@ from .devices.motor import state_text
 from .physics import Physics
 from .robot import Robot
 from .trace import Trace
+from .world.cell import Cell
 from .world.grid import Grid
 from .world.pose import Pose
 from .world.robot_spec import RobotSpec
@@ -64,7 +65,7 @@ class Simulation:
         self.dt = tick_us / 1e6
         self.rng = np.random.default_rng(seed)
         self.physics = Physics(world.grid.wall_rectangles())
-        floor = Floor.of(world.grid)
+        floor = self.floor = Floor.of(world.grid)
         ambient = float(getattr(world, "ambient", 10.0) or 10.0)
         self.robots = [
             Robot(name, spec, pose, self.physics, floor, self.rng, ambient) for name, spec, pose in robots
@@ -134,6 +135,51 @@ class Simulation:
 
     def _motors_now(self, robot: Robot) -> dict:
         return {"driving": robot.driving(), "states": self.motor_states(robot)}
+
+    # --------------------------------------------------- a hand in the world (live runs)
+    def place_robot(self, index: int, x_cm: float, y_cm: float, heading_deg: float) -> None:
+        """Pick robot `index` up and put it down elsewhere, between two ticks; the trace records it (an
+        event 'place'), so that a replay shows the jump.  ValueError where its body would be in a wall
+        or outside the world (it is not moved then)."""
+        robot = self.robots[index]
+        before = robot.x, robot.y, math.degrees(robot.heading_rad)
+        robot.place(x_cm, y_cm, heading_deg)
+        width, height = self.world.grid.size_cm
+        if not (0 <= x_cm <= width and 0 <= y_cm <= height) or self.physics.overlaps_wall(robot.body):
+            robot.place(*before)
+            raise ValueError(
+                f"robot {index + 1} cannot stand at ({x_cm:.1f}, {y_cm:.1f}) cm: it would be in a wall"
+            )
+        self.trace.add_event(
+            self._now_s(), index, "place", {"x_cm": x_cm, "y_cm": y_cm, "heading_deg": heading_deg}
+        )
+
+    def set_cell(self, col: int, row: int, cell: Cell) -> None:
+        """Change one cell of the world between two ticks: its walls and floor as the robots meet and
+        read them from the next tick on; the trace records it (an event 'cell').  ValueError for a wall
+        where a robot stands, or a border cell made floor (the robots must not leave the world)."""
+        grid = self.world.grid
+        border = col in (0, grid.width - 1) or row in (0, grid.height - 1)
+        if border and not cell.wall:
+            raise ValueError(f"cell ({col}, {row}) is on the border: it stays a wall")
+        if cell.wall:
+            s = grid.cell_cm
+            box = (col * s, row * s, (col + 1) * s, (row + 1) * s)
+            for i, robot in enumerate(self.robots):
+                if self.physics.box_touches(robot.body, box):
+                    raise ValueError(f"cell ({col}, {row}) is under robot {i + 1}: move the robot first")
+        self.world.set_cell(col, row, cell)
+        fresh = Floor.of(self.world.grid)
+        for name in ("reflected", "color_id", "raw_rgb"):  # the sensors hold this Floor: change it in place
+            getattr(self.floor, name)[:] = getattr(fresh, name)
+        self.physics.set_walls(self.world.grid.wall_rectangles())
+        self.trace.add_event(
+            self._now_s(), -1, "cell", {"col": col, "row": row, "wall": cell.wall, "shade": cell.shade,
+                                       "color": cell.color},
+        )  # fmt: skip
+
+    def _now_s(self) -> float:
+        return self.trace.times[-1] if self.trace.times else 0.0
 
     def let_go(self, index: int) -> None:
         """Robot `index`'s program ended (or its brick was dropped) while other robots' programs run on.
