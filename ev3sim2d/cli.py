@@ -9,7 +9,7 @@ import sys
 # numpy's BLAS would start a thread per core that spins after each call: the simulator has no use for it
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from .commands import doctor, edit, examples, grade, join, lessons, mazes, render, run, serve, show
+from .commands import doctor, edit, examples, grade, join, lessons, mazes, plot, render, run, serve, show
 
 COMMANDS = [
     run,
@@ -20,6 +20,7 @@ COMMANDS = [
     lessons,
     grade,
     render,
+    plot,
     show,
     edit,
     doctor,

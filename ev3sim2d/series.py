@@ -7,6 +7,7 @@ measurement up to then (what the program would have read), NaN before the first 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -74,12 +75,24 @@ def robot_series(trace: Trace, index: int = 0) -> RobotSeries:
 
 def _held(trace: Trace, robot: int, port: str, times: np.ndarray) -> np.ndarray:
     """A sensor's first value at each time: its last measurement up to then, NaN before any."""
-    samples = [(t, values[0]) for t, r, p, _mode, values in trace.sensor_samples if r == robot and p == port]
+    return held_readings(trace, robot, port, times, lambda _mode, values: float(values[0]))
+
+
+def held_readings(
+    trace: Trace, robot: int, port: str, times: np.ndarray, reading: Callable[[str, list], float]
+) -> np.ndarray:
+    """`reading(mode, values)` of a sensor's last measurement up to each time, NaN before any (the plot
+    uses it to give each reading in its mode's unit)."""
+    samples = [
+        (t, reading(mode, values))
+        for t, r, p, mode, values in trace.sensor_samples
+        if r == robot and p == port
+    ]
     out = np.full(len(times), np.nan)
     if not samples:
         return out
     sample_t = np.array([t for t, _ in samples], dtype=float)
-    sample_v = np.array([float(v) for _, v in samples])
+    sample_v = np.array([v for _, v in samples], dtype=float)
     at = np.searchsorted(sample_t, times + _EPS_S, side="right") - 1
     seen = at >= 0
     out[seen] = sample_v[at[seen]]

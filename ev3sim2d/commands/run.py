@@ -17,6 +17,7 @@ from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
+from .plot import add_value_arguments, matplotlib_missing, value_names, write_plot
 
 NAME = "run"
 HELP = "run a program (or several, one robot each) in a world"
@@ -48,6 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
     parser.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
     parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
+    add_plot_arguments(parser)
     parser.add_argument("--quiet", action="store_true", help="do not echo what the program prints")
     parser.add_argument(
         "--press",
@@ -65,6 +67,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
     )
     add_picture_arguments(parser)
+
+
+def add_plot_arguments(parser: argparse.ArgumentParser) -> None:
+    """--plot FILE and --plot-values NAMES: the chart of `ev3sim2d plot`, written at the end of the run."""
+    parser.add_argument(
+        "--plot",
+        metavar="FILE",
+        help="write a chart of the first robot's sensor values and motor speeds against time (PNG; "
+        "needs matplotlib)",
+    )
+    add_value_arguments(parser, "--plot-values")
 
 
 def _press(text: str) -> ButtonPress:
@@ -113,6 +126,8 @@ def write_outputs(args, result: RunResult, programs: list[str]) -> None:
         write_summary(run_summary(result, programs, args.maze, args.seed, args.time), args.summary)
     if args.png or args.video or args.frames:
         write_pictures(result.trace, args)
+    if args.plot:
+        write_plot(result.trace, args.plot, value_names(args.plot_values))
 
 
 STATUS_CODES = {
@@ -147,6 +162,8 @@ def report_end(args, result: RunResult, programs: list[str]) -> int:
 def main(args) -> int:
     if args.time is not None and args.time <= 0:
         return fail("--time must be a positive number of seconds")
+    if args.plot and (hint := matplotlib_missing()) is not None:
+        return fail(f"--plot: {hint}")
     try:
         world = load_maze(find_maze(args.maze))
         robot = robots_given(args.robot, args.programs)

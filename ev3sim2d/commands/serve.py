@@ -16,7 +16,8 @@ from ..simulation import StartBlocked
 from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_INTERRUPTED, fail
-from .run import RobotOptionError, _press, report_end, robots_given
+from .plot import matplotlib_missing
+from .run import RobotOptionError, _press, add_plot_arguments, report_end, robots_given
 
 NAME = "serve"
 HELP = "hold a world for N robots whose programs join over the network (ev3sim2d join)"
@@ -51,6 +52,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
     parser.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
     parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
+    add_plot_arguments(parser)
     parser.add_argument("--quiet", action="store_true", help="do not show what the programs print")
     parser.add_argument(
         "--press", action="append", default=[], type=_press, metavar="BUTTON@S", help="press a brick button at S s"
@@ -72,6 +74,8 @@ def _log(text: str) -> None:
 def main(args) -> int:
     if args.time is not None and args.time <= 0:
         return fail("--time must be a positive number of seconds")
+    if args.plot and (hint := matplotlib_missing()) is not None:
+        return fail(f"--plot: {hint}")
     if not 0 <= args.port < 65536:
         return fail(f"--port {args.port}: a TCP port is 1 to 65535")
     try:
