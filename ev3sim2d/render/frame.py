@@ -8,12 +8,14 @@ captions and the panel's values.
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from pathlib import Path
 
 import cv2
 import numpy as np
 
 from ..trace import Trace
+from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from . import palette
 from .layout import FrameLayout
@@ -57,12 +59,47 @@ class FrameRenderer:
         self.map_bounds = (0, 0, self.layout.panel_x, self.layout.height)
         self.panel = Panel(trace, self.timeline, self.looks, self.layout, speed)
         self.caption_font = Font(self.layout.font_px, bold=True)  # (the panel's may be smaller)
+        # a live run's hand in the world (ev3sim2d/live): cells changed, robots put elsewhere
+        self._cell_events = sorted((e[0], e[3]) for e in trace.events if e[2] == "cell")
+        self._cells_shown = 0
+        self._placed: dict[int, list[int]] = {}  # robot -> ticks after which it was put elsewhere
+        for t, robot, kind, _ in trace.events:
+            if kind == "place":
+                self._placed.setdefault(robot, []).append(self.timeline.tick_at(t))
+        self._draw_background()
+
+    def _draw_background(self) -> None:
         background = np.empty((self.layout.height, self.layout.width, 3), dtype=np.uint8)
         background[:] = palette.SURROUND
         draw_world(background, self.world, self.view, self.label_font)
         self.panel.draw_base(background)
         self.background = background
         self._reset_trails()
+
+    def _show_cells_at(self, t_s: float) -> None:
+        """The world as a live run's hand had changed it by t_s: drawn again when that changes."""
+        count = bisect_right([t for t, _ in self._cell_events], t_s)
+        if count == self._cells_shown:
+            return
+        world = parse_maze(self.trace.world["text"], self.trace.world.get("name") or "<trace>")
+        grid = world.grid
+        for _, cell in self._cell_events[:count]:
+            grid = grid.with_cell(cell["col"], cell["row"], Cell(cell["wall"], cell["shade"], cell["color"]))
+        world.grid = grid
+        self.world = world
+        self.walls = Walls(grid.wall_rectangles())
+        self._cells_shown = count
+        self._draw_background()
+
+    def _pieces(self, robot: int, first: int, last: int) -> list[tuple[int, int]]:
+        """Ticks first..last cut where the robot was put elsewhere: a trail does not join the jump."""
+        pieces, start = [], first
+        for placed in self._placed.get(robot, ()):
+            if start <= placed < last:
+                pieces.append((start, placed))
+                start = placed + 1
+        pieces.append((start, last))
+        return pieces
 
     def _reset_trails(self) -> None:
         self._canvas = self.background.copy()
@@ -77,7 +114,8 @@ class FrameRenderer:
             done = self._trail_tick[i]
             if tick <= done:
                 continue
-            draw_trail(self._canvas, self.view, tl.path(i, done, tick), look.trail_color, self.trail_px)
+            for a, b in self._pieces(i, done, tick):
+                draw_trail(self._canvas, self.view, tl.path(i, a, b), look.trail_color, self.trail_px)
             for contact in tl.contact_ticks(i):
                 if done < contact <= tick:
                     point = contact_point(look, tl.pose(i, int(contact)), self.walls)
@@ -89,6 +127,8 @@ class FrameRenderer:
         """The frame showing simulated time t_s (BGR, height × width × 3), drawn into `out` if given."""
         tl = self.timeline
         tick = tl.tick_at(t_s)
+        if self._cell_events:
+            self._show_cells_at(t_s)
         recent_ticks = int(round(TRAIL_RECENT_S / max(self.trace.tick_s, 1e-6)))
         self._grow_trails(max(tick - recent_ticks, -1))
         if out is None:
@@ -97,8 +137,8 @@ class FrameRenderer:
             frame = out
             np.copyto(frame, self._canvas)
         for i, look in enumerate(self.looks):
-            first = max(self._trail_tick[i], -1)
-            draw_recent_trail(frame, self.view, look, tl.path(i, first, tick), self.trail_px + 1)
+            for a, b in self._pieces(i, max(self._trail_tick[i], -1), tick):
+                draw_recent_trail(frame, self.view, look, tl.path(i, a, b), self.trail_px + 1)
         poses, pressed_by_robot = [], []
         for i, look in enumerate(self.looks):  # every beam first, so that no label hides a robot
             pose = tl.pose(i, tick)
