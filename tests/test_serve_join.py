@@ -364,3 +364,65 @@ def test_a_student_who_joins_before_the_world_is_served_waits_for_it(tmp_path):
         assert served.finish() == 0
     finally:
         served.stop()
+
+
+class SlowLink:
+    """A TCP proxy that holds every chunk back a while, both ways: a distant or slow network."""
+
+    def __init__(self, target: str, delay_s: float) -> None:
+        import threading
+
+        host, port = target.rsplit(":", 1)
+        self.target = (host, int(port))
+        self.delay_s = delay_s
+        self.listener = socket.create_server(("127.0.0.1", 0))
+        self.address = f"127.0.0.1:{self.listener.getsockname()[1]}"
+        self.threads = [threading.Thread(target=self._accept, daemon=True)]
+        self.threads[0].start()
+
+    def _accept(self) -> None:
+        import threading
+
+        while True:
+            try:
+                near, _ = self.listener.accept()
+            except OSError:
+                return
+            far = socket.create_connection(self.target)
+            for a, b in ((near, far), (far, near)):
+                threading.Thread(target=self._pipe, args=(a, b), daemon=True).start()
+
+    def _pipe(self, source: socket.socket, sink: socket.socket) -> None:
+        try:
+            while data := source.recv(65536):
+                time.sleep(self.delay_s)
+                sink.sendall(data)
+            sink.shutdown(socket.SHUT_WR)
+        except OSError:
+            pass
+
+    def close(self) -> None:
+        self.listener.close()
+
+
+def test_a_slow_distant_brick_changes_the_wall_time_only(serve, tmp_path):
+    spinner = _program(tmp_path, "spinner.py", SPINNER)
+    subprocess.run(
+        _command("run", str(LINE_FOLLOWER), str(spinner), "--maze", "line-shared", "--time", "3", "--quiet",
+                 "--summary", "run.json"),
+        cwd=tmp_path, env=_env(), check=True, capture_output=True,
+    )  # fmt: skip
+    served = serve("--maze", "line-shared", "--robots", "2", "--time", "3", "--summary", "served.json")
+    link = SlowLink(served.address, delay_s=0.003)  # 3 ms more each way, for every chunk
+    try:
+        far = _join(link.address, spinner, "--robot", "2", cwd=tmp_path)
+        near = _join(served.address, LINE_FOLLOWER, "--robot", "1", cwd=tmp_path)
+        for join in (far, near):
+            _, err = join.communicate(timeout=300)
+            assert join.returncode == 0, err
+    finally:
+        link.close()
+    assert served.finish() == 0
+    ran, joined = _summary(tmp_path / "run.json"), _summary(tmp_path / "served.json")
+    assert joined["fingerprint"] == ran["fingerprint"]
+    assert joined["wall_time_s"] > ran["wall_time_s"]
