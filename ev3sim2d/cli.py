@@ -9,7 +9,21 @@ import sys
 # numpy's BLAS would start a thread per core that spins after each call: the simulator has no use for it
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from .commands import doctor, edit, examples, grade, join, lessons, mazes, plot, render, run, serve, show
+from .commands import (
+    doctor,
+    edit,
+    examples,
+    grade,
+    join,
+    lessons,
+    live,
+    mazes,
+    plot,
+    render,
+    run,
+    serve,
+    show,
+)
 
 COMMANDS = [
     run,
@@ -23,6 +37,7 @@ COMMANDS = [
     plot,
     show,
     edit,
+    live,
     doctor,
 ]  # a new subcommand: a module in commands/, one entry here
 

@@ -29,6 +29,7 @@ STATIC_FILES = {
     "/": ("index.html", "text/html; charset=utf-8"),
     "/index.html": ("index.html", "text/html; charset=utf-8"),
     "/editor.js": ("editor.js", "text/javascript; charset=utf-8"),
+    "/world_canvas.js": ("world_canvas.js", "text/javascript; charset=utf-8"),  # shared with the live page
     "/editor.css": ("editor.css", "text/css; charset=utf-8"),
 }
 MAX_BODY_BYTES = 4 * 1024 * 1024

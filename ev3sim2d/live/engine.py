@@ -155,7 +155,7 @@ class LiveRun:
         return self._do(lambda: self.world.text)
 
     # ------------------------------------------------------------ the thread
-    def _do(self, action: Callable[[], object]) -> dict:
+    def _do(self, action: Callable[[], object]) -> dict | str:
         """Carry out an action on the run's thread; its result, or LiveError saying why not."""
         if self._thread is None or not self._thread.is_alive():
             raise LiveError("the live run is not running")
@@ -176,7 +176,7 @@ class LiveRun:
         if "error" in box:
             raise box["error"]
         value = box.get("value")
-        return value if isinstance(value, dict) else self.state()
+        return self.state() if value is None else value  # a command's new state; world_text's text
 
     def _loop(self) -> None:
         try:

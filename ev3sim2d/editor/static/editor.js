@@ -3,13 +3,10 @@
 "use strict";
 
 (function () {
-  const SURROUND = "rgb(40, 42, 48)";
-  const WALL_EDGE = "rgb(120, 120, 126)";
   const REGION = "rgb(0, 114, 178)";
   const HANDLE = "rgb(213, 94, 0)";
   const COLOR_KEYS = ["black", "blue", "green", "yellow", "red", "white", "brown"];
-  const BORDER_MESSAGE =
-    "Border cells stay walls, so the robot cannot leave the world. You can change their colour with Paint colour.";
+  const { wallCell, floorShade } = WorldCanvas;
   const HISTORY_LIMIT = 200;
 
   const canvas = document.getElementById("canvas");
@@ -35,16 +32,8 @@
   }
 
   // -- cells ------------------------------------------------------------------------------------
-  function displayRgb(cell) {
-    if (cell.color) return world.palette.colors[cell.color];
-    const shade = cell.shade === null ? world.palette.wall_shade : cell.shade;
-    const level = Math.max(0, Math.min(255, Math.round((shade * 255) / 100)));
-    return [level, level, level];
-  }
-  const rgb = (c) => `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
+  const rgb = WorldCanvas.rgb;
   const isBorder = (col, row) => col === 0 || row === 0 || col === state.width - 1 || row === state.height - 1;
-  const wallCell = (color) => ({ wall: true, shade: null, color: color || null, char: null, region: null });
-  const floorShade = (shade) => ({ wall: false, shade: shade, color: null, char: null, region: null });
   const sameCell = (a, b) => a.wall === b.wall && a.shade === b.shade && a.color === b.color;
 
   function setCell(col, row, cell) {
@@ -119,6 +108,7 @@
       left: (canvas.width - w * scale) / 2,
       top: (canvas.height - h * scale) / 2,
       dpr: dpr,
+      heightCm: h,
     };
   }
   const pxX = (x) => view.left + x * view.scale;
@@ -136,70 +126,11 @@
     return [col, row];
   }
 
-  // -- drawing (as ev3sim2d/render/world_layer.py draws) ------------------------------------------
-  let hatch = null;
-  function hatchPattern() {
-    if (hatch) return hatch;
-    const tile = document.createElement("canvas");
-    tile.width = tile.height = 7;
-    const t = tile.getContext("2d");
-    t.fillStyle = "rgba(255, 255, 255, 0.11)";
-    for (let i = 0; i < 7; i++) t.fillRect(i, 6 - i, 1, 1);
-    hatch = ctx.createPattern(tile, "repeat");
-    return hatch;
-  }
-
+  // -- drawing (world_canvas.js draws cells and robots, as ev3sim2d/render/world_layer.py does) --------
   function draw() {
     if (!state) return;
     layout();
-    const s = state.cell_cm * view.scale;
-    ctx.setTransform(1, 0, 0, 1, 0, 0);
-    ctx.fillStyle = SURROUND;
-    ctx.fillRect(0, 0, canvas.width, canvas.height);
-    for (let row = 0; row < state.height; row++) {
-      for (let col = 0; col < state.width; col++) {
-        const cell = state.cells[row][col];
-        const x = pxX(col * state.cell_cm);
-        const y = pxY((row + 1) * state.cell_cm);
-        ctx.fillStyle = rgb(displayRgb(cell));
-        ctx.fillRect(Math.floor(x), Math.floor(y), Math.ceil(s) + 1, Math.ceil(s) + 1);
-      }
-    }
-    // grid lines on floor, hatching and edges on walls
-    ctx.fillStyle = "rgba(0, 0, 0, 0.10)";
-    const line = Math.max(1, Math.round(view.dpr));
-    for (let row = 0; row < state.height; row++) {
-      for (let col = 0; col < state.width; col++) {
-        const cell = state.cells[row][col];
-        const x = Math.floor(pxX(col * state.cell_cm));
-        const y = Math.floor(pxY((row + 1) * state.cell_cm));
-        if (cell.wall) {
-          ctx.save();
-          ctx.fillStyle = hatchPattern();
-          ctx.fillRect(x, y, Math.ceil(s), Math.ceil(s));
-          ctx.restore();
-        } else if (s >= 6) {
-          ctx.fillRect(x, y, Math.ceil(s), line);
-          ctx.fillRect(x, y, line, Math.ceil(s));
-        }
-      }
-    }
-    ctx.strokeStyle = WALL_EDGE;
-    ctx.lineWidth = line;
-    ctx.beginPath();
-    const wall = (c, r) => c >= 0 && r >= 0 && c < state.width && r < state.height && state.cells[r][c].wall;
-    for (let row = 0; row < state.height; row++) {
-      for (let col = 0; col < state.width; col++) {
-        if (!wall(col, row)) continue;
-        const x0 = pxX(col * state.cell_cm), x1 = pxX((col + 1) * state.cell_cm);
-        const y0 = pxY(row * state.cell_cm), y1 = pxY((row + 1) * state.cell_cm);
-        if (!wall(col - 1, row)) { ctx.moveTo(x0, y0); ctx.lineTo(x0, y1); }
-        if (!wall(col + 1, row)) { ctx.moveTo(x1, y0); ctx.lineTo(x1, y1); }
-        if (!wall(col, row - 1)) { ctx.moveTo(x0, y0); ctx.lineTo(x1, y0); }
-        if (!wall(col, row + 1)) { ctx.moveTo(x0, y1); ctx.lineTo(x1, y1); }
-      }
-    }
-    ctx.stroke();
+    WorldCanvas.drawCells(ctx, view, state, world.palette);
     drawLegendRegions();
     state.regions.forEach((region, i) => drawRegion(region, i === selectedRegion && mode === "regions"));
     if (gesture && gesture.kind === "region") drawRegion({ name: "", rects: [gesture.rect] }, true);
@@ -283,27 +214,9 @@
   }
 
   function drawRobot(pose, index) {
-    const r = world.robot;
-    const a = (pose.heading_deg * Math.PI) / 180;
     const cx = pxX(pose.x_cm), cy = pxY(pose.y_cm);
-    ctx.save();
-    ctx.translate(cx, cy);
-    ctx.rotate(-a);
     const k = view.scale;
-    ctx.fillStyle = `rgba(${r.color[0]}, ${r.color[1]}, ${r.color[2]}, 0.9)`;
-    ctx.strokeStyle = "rgb(30, 30, 30)";
-    ctx.lineWidth = Math.max(1, view.dpr * 1.5);
-    ctx.fillRect(-r.back_cm * k, -(r.width_cm / 2) * k, (r.front_cm + r.back_cm) * k, r.width_cm * k);
-    ctx.strokeRect(-r.back_cm * k, -(r.width_cm / 2) * k, (r.front_cm + r.back_cm) * k, r.width_cm * k);
-    // heading arrow
-    ctx.fillStyle = "rgb(30, 30, 30)";
-    ctx.beginPath();
-    ctx.moveTo(r.front_cm * 0.9 * k, 0);
-    ctx.lineTo(r.front_cm * 0.2 * k, -r.width_cm * 0.28 * k);
-    ctx.lineTo(r.front_cm * 0.2 * k, r.width_cm * 0.28 * k);
-    ctx.closePath();
-    ctx.fill();
-    ctx.restore();
+    WorldCanvas.drawRobotBody(ctx, view, world.robot, pose);
     if (state.starts.length > 1) label(String(index + 1), cx - 6, cy - 6);
     if (mode === "robot" && index === selectedStart) {
       const h = handlePoint(pose);
@@ -405,25 +318,18 @@
   // -- editing cells --------------------------------------------------------------------------
   function applyCell(col, row, first) {
     const cell = state.cells[row][col];
-    if (mode === "wall") {
-      if (isBorder(col, row)) return say(BORDER_MESSAGE, "error");
+    if (mode === "wall" && !isBorder(col, row)) {
       if (first) gesture.makeWall = !cell.wall;
       if (gesture.makeWall && isStartCell(col, row)) {
         return say("The robot starts on this cell; move the robot before making it a wall.", "error");
       }
-      setCell(col, row, gesture.makeWall ? wallCell(null) : floorShade(100));
-    } else if (mode === "lighten" || mode === "darken") {
-      if (cell.wall) return say("Walls have no shade; lighten and darken work on floor cells.", "error");
-      if (cell.color) return say("This cell is painted a colour; paint it plain (0) to give it a shade.", "error");
-      const steps = world.palette.shade_steps;
-      const up = mode === "lighten";
-      const next = up ? steps.find((v) => v > cell.shade) : [...steps].reverse().find((v) => v < cell.shade);
-      if (next === undefined) return say(up ? "This cell is already white." : "This cell is already black.");
-      setCell(col, row, floorShade(next));
-    } else if (mode === "paint") {
-      if (paintColor === "plain") setCell(col, row, cell.wall ? wallCell(null) : floorShade(100));
-      else setCell(col, row, { wall: cell.wall, shade: null, color: paintColor, char: null, region: null });
     }
+    const made = WorldCanvas.toolCell(mode, cell, {
+      palette: world.palette, paintColor: paintColor, makeWall: gesture.makeWall, border: isBorder(col, row),
+    });
+    if (made.error) return say(made.error, "error");
+    if (made.note) return say(made.note);
+    setCell(col, row, made.cell);
   }
 
   function snapPose(p, free) {
