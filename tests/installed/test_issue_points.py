@@ -51,9 +51,8 @@ A Python API and notebooks
   the install command without it); a result shows itself in Jupyter
     test_python_api.py::test_simulate_runs_a_shipped_example_in_a_shipped_world_by_name
     test_python_api.py::test_a_chart_with_the_plot_extra_and_the_install_command_without_it
-- the notebook docs/python-api.ipynb executed (nbclient): tests/api/test_notebook.py (in-tree, on the
-  checkout).  Its calls are run from the wheel by the tests above; a kernel of the installed venv would
-  need ipykernel there too, +16-19 s to install and +6 s to run, over this suite's time budget.
+- the notebook docs/python-api.ipynb executed (nbclient), on a kernel of the installed venv
+    test_notebook.py::test_the_notebook_runs_on_the_installed_package_and_shows_the_run_the_chart_and_the_table
 - the API reference generated from docstrings: tests/api/test_api_reference.py (in-tree)
 - worlds built in Python (`World.from_text`, a cell, a region), saved as YAML and read back
     test_python_api.py::test_a_world_built_in_python_is_saved_read_back_and_run_from_the_command_line
