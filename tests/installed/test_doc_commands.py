@@ -130,5 +130,6 @@ def test_skip_markers_are_few_and_each_says_why():
     ]
     assert all(len(why.split()) >= 3 for _, _, why in skipped), skipped
     # 13 today: the CI commands and the wheel install (3), the editor's page (2), benchmarks (2), a class
-    # in Classroom and students' programs (3), two computers on a class network (2), a plug-in package (1)
-    assert len(skipped) <= 14, skipped
+    # in Classroom and students' programs (3), two computers on a class network (2), a plug-in package (1);
+    # 14: `ev3sim2d live` (1), which serves a page until Ctrl+C and opens a browser (issue 14)
+    assert len(skipped) <= 15, skipped
