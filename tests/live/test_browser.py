@@ -8,6 +8,7 @@ skipped, except in CI (CI=true), where .ci/run installs it and they must run.
 
 from __future__ import annotations
 
+import os
 import textwrap
 import threading
 from pathlib import Path
@@ -73,6 +74,35 @@ def live_page(browser, tmp_path):
         live.close()
 
 
+def test_the_docs_picture_a_line_follower_with_its_plot(browser, tmp_path):
+    """docs/images/live.png: the line follower on the line track, paused, its light and speeds plotted.
+    Written into docs/ only when EV3SIM2D_DOCS_PICTURES=1 (a test run must not change the checkout)."""
+    root = Path(__file__).resolve().parents[2]
+    world_path = root / "mazes" / "line.yaml"
+    live = LiveRun([root / "examples" / "line_follower.py"], load_maze(world_path), speed=4.0)
+    server = LiveServer(live, LiveWorldFile(world_path))
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    live.start()
+    page = browser.new_page(viewport={"width": 1280, "height": 800}, bypass_csp=True)
+    try:
+        page.goto(server.url)
+        page.wait_for_function("window.ev3live && window.ev3live.ready()")
+        wait_state(page, "s.t_s > 9", timeout_ms=20000)
+        page.click("#pause")
+        wait_state(page, "s.status === 'paused'")
+        page.wait_for_timeout(200)
+        shot = tmp_path / "live.png"
+        page.screenshot(path=str(shot))
+        assert shot.stat().st_size > 20_000
+        if os.environ.get("EV3SIM2D_DOCS_PICTURES") == "1":
+            DOCS_IMAGE.write_bytes(shot.read_bytes())
+    finally:
+        page.close()
+        server.shutdown()
+        server.server_close()
+        live.close()
+
+
 def robot(page) -> dict:
     return page.evaluate("ev3live.state().robots[0]")
 
@@ -102,8 +132,6 @@ def test_the_robot_moves_pause_freezes_it_and_resume_goes_on(live_page):
     assert stage.screenshot() == first
     assert live.state()["t_s"] == t_paused
     assert page.inner_text("#pause") == "Resume"
-    DOCS_IMAGE.parent.mkdir(parents=True, exist_ok=True)
-    page.screenshot(path=str(DOCS_IMAGE))  # docs/live.md's picture of the page
     page.click("#pause")
     wait_state(page, f"s.status === 'running' && s.t_s > {t_paused} + 0.3")
     assert stage.screenshot() != first
