@@ -23,14 +23,15 @@ from pathlib import Path
 from ..brick_port import BrickPort
 from ..brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
 from ..program import Program, ProgramError
-from ..run import await_hello, new_simulation, program_error, robot_names, run_result
+from ..run import await_hello, new_simulation, program_error, robot_names, robot_specs, run_result
 from ..session import Session
 from ..trace import Trace
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from ..world.pose import Pose
-from ..world.robot_spec import RobotSpec
+from ..world.robot_spec import RobotSpec, parse_robot, robot_yaml, shipped_robots_dir
 from ..world.world import World
+from ..world.yaml_source import read_text_file
 
 MAX_STEP_US = 50_000  # at most this much simulated time between two looks at the commands
 FRAME_S = 1 / 60  # how often a paced run looks at the clock when it is ahead of it
@@ -71,6 +72,7 @@ class LiveRun:
         self.world = world
         self.starts: list[Pose] = list(world.starts[: len(self.programs)])
         self.robots = robots
+        self._robot_edits: dict[int, RobotSpec] = {}  # robots changed on the page (set_robot), by index
         self.speed = _checked_speed(speed)
         self.seed = seed
         self.limit_us = None if time_limit_s is None else int(round(time_limit_s * 1e6))
@@ -98,6 +100,9 @@ class LiveRun:
         self._thread: threading.Thread | None = None
         self._closing = False
         self._mtimes = self._program_mtimes()
+        self._events_seen = 0  # the trace's events read so far (the LCD frames, the interventions)
+        self._lcd_frames: list[int | None] = []
+        self._interventions = 0
 
     # ------------------------------------------------------------------ life
     def start(self, paused: bool = False) -> None:
@@ -144,6 +149,56 @@ class LiveRun:
     def set_cell(self, col: int, row: int, cell: Cell) -> dict:
         """Change a cell of the world (a wall, a shade, a colour), now and for every reload."""
         return self._do(lambda: self._set_cell(int(col), int(row), cell))
+
+    def set_robot(self, index: int, robot: str | dict | RobotSpec) -> dict:
+        """Change robot `index` (0, 1, ...): a robot file's text, or its mapping, read and checked as a
+        robot file is (a WorldFileError with the line and the fix otherwise).  Only while paused or
+        ended: the run starts over paused at 0 s with it, keeping the world's edits and the robots'
+        places (like reload).  Reset forgets it."""
+        spec = robot if isinstance(robot, RobotSpec) else parse_robot(_robot_text(robot), "the page's robot")
+        return self._do(lambda: self._set_robot(index, spec))
+
+    def robot_spec(self, index: int) -> RobotSpec:
+        """The robot `index` runs as (set_robot's, else the one given or the world's)."""
+        self._check_index(index)
+        return self._specs()[index]
+
+    def robot_text(self, index: int) -> str:
+        """Robot `index` as a robot file's text: its own file's as it is, unless changed here."""
+        spec = self.robot_spec(index)
+        if index not in self._robot_edits and spec.source and spec.source.endswith((".yaml", ".yml")):
+            try:
+                text = read_text_file(spec.source)
+                if parse_robot(text, spec.source) == spec:
+                    return text
+            except (OSError, ValueError):
+                pass
+        return robot_yaml(spec)
+
+    def robot_file(self, index: int) -> Path | None:
+        """The robot file of the user's that robot `index` came from; None for a shipped robot, one
+        written inside a world file, or one changed on the page."""
+        spec = self.robot_spec(index)
+        if not spec.source or not spec.source.endswith((".yaml", ".yml")):
+            return None
+        path = Path(spec.source).resolve()
+        if shipped_robots_dir() in path.parents or not path.is_file():
+            return None
+        try:
+            parse_robot(read_text_file(path), str(path))  # a world file's inline robot is not a robot file
+        except (OSError, ValueError):
+            return None
+        return path
+
+    def adopt_robot_file(self, index: int, path: Path) -> None:
+        """Robot `index` was saved to `path`: that is its file now (where Save writes it next time)."""
+        self._do(lambda: self._adopt(index, path))
+
+    def lcd_frame(self, frame: int) -> bytes | None:
+        """The current run's LCD frame `frame` (178 x 128 bytes of grey), or None; never waits."""
+        sim = self._sim
+        frames = sim.trace.lcd_frames if sim is not None else []
+        return frames[frame] if 0 <= frame < len(frames) else None
 
     def state(self) -> dict:
         """What the page shows: time, status, every robot's pose and devices, printed lines, the error."""
@@ -218,9 +273,10 @@ class LiveRun:
         self.error = None
         self._mtimes = self._program_mtimes()
         count = len(self.programs)
-        sim, presses = new_simulation(self.world, count, self.robots, self.seed, None, self.starts)
+        sim, presses = new_simulation(self.world, count, self._specs(), self.seed, None, self.starts)
         names = robot_names(count)
         self._sim = sim
+        self._events_seen, self._lcd_frames, self._interventions = 0, [None] * count, 0
         self._ports, self._bricks, self._shown = [], [], []
         limits = BrickLimits()
         printed: list = []
@@ -352,14 +408,49 @@ class LiveRun:
         self._begin()
 
     def _reset(self) -> None:
+        self._robot_edits.clear()
         self.world = parse_maze(self._original_text, self.world.name)
         self.starts = list(self.world.starts[: len(self.programs)])
         self.world_version += 1
         self._reload()
 
-    def _move(self, index: int, x_cm: float, y_cm: float, heading_deg: float) -> None:
+    def _check_index(self, index: int) -> None:
         if not 0 <= index < len(self.programs):
             raise LiveError(f"there is no robot {index + 1}: robots are 1 to {len(self.programs)}")
+
+    def _specs(self) -> list[RobotSpec]:
+        specs = robot_specs(self.world, len(self.programs), self.robots)
+        return [self._robot_edits.get(i, spec) for i, spec in enumerate(specs)]
+
+    def _set_robot(self, index: int, spec: RobotSpec) -> None:
+        self._check_index(index)
+        if self.status not in ("paused", "ended"):
+            raise LiveError(
+                "pause the run first: a robot is changed while paused (it then starts over at 0 s)"
+            )
+        before = self._robot_edits.get(index)
+        self._robot_edits[index] = spec
+        self._paused_by_user = True
+        if self._session is not None:
+            self._finish()
+        self._stop_bricks()
+        try:
+            self._begin()
+        except Exception:  # the world cannot take this robot (e.g. its body in a wall): the old one back
+            if before is None:
+                self._robot_edits.pop(index)
+            else:
+                self._robot_edits[index] = before
+            self._begin()
+            raise
+
+    def _adopt(self, index: int, path: Path) -> None:
+        import dataclasses
+
+        self._robot_edits[index] = dataclasses.replace(self.robot_spec(index), source=str(path))
+
+    def _move(self, index: int, x_cm: float, y_cm: float, heading_deg: float) -> None:
+        self._check_index(index)
         if self._session is not None:
             self._sim.place_robot(index, x_cm, y_cm, heading_deg)
         self.starts[index] = Pose(x_cm, y_cm, heading_deg)  # where a reload starts it
@@ -386,9 +477,22 @@ class LiveRun:
                 found.append(-1.0)
         return found
 
+    def _read_events(self, trace: Trace | None) -> None:
+        """The trace's new events: each robot's last LCD frame, and how many interventions."""
+        if trace is None:
+            return
+        events = trace.events
+        for _t, robot, kind, data in events[self._events_seen :]:
+            if kind == "lcd" and 0 <= robot < len(self._lcd_frames):
+                self._lcd_frames[robot] = data["frame"]
+            elif kind in ("place", "cell"):
+                self._interventions += 1
+        self._events_seen = len(events)
+
     def _publish(self) -> None:
         sim, session = self._sim, self._session
         trace = sim.trace if sim is not None else None
+        self._read_events(trace)
         printed = trace.output[-PRINTED_KEPT:] if trace is not None else []
         state = {
             "t_s": session.world_us / 1e6 if session is not None else _last_time(trace),
@@ -397,7 +501,7 @@ class LiveRun:
             "run": self.run_number,
             "world_version": self.world_version,
             "time_limit_s": None if self.limit_us is None else self.limit_us / 1e6,
-            "robots": [_robot_state(i, robot) for i, robot in enumerate(sim.robots)]
+            "robots": [_robot_state(i, robot, self._lcd_frames[i]) for i, robot in enumerate(sim.robots)]
             if sim is not None
             else [],
             "printed": [
@@ -405,7 +509,7 @@ class LiveRun:
                 for line in printed
             ],
             "printed_count": len(trace.output) if trace is not None else 0,
-            "interventions": sum(1 for e in trace.events if e[2] in ("place", "cell")) if trace else 0,
+            "interventions": self._interventions,
             "error": self.error,
         }
         with self._state_lock:
@@ -416,7 +520,18 @@ def _last_time(trace: Trace | None) -> float:
     return trace.times[-1] if trace is not None and trace.times else 0.0
 
 
-def _robot_state(index: int, robot) -> dict:
+def _robot_text(robot: str | dict) -> str:
+    """A robot file's text, or a robot file's mapping (as JSON gives it) written as YAML."""
+    if isinstance(robot, str):
+        return robot
+    if isinstance(robot, dict):
+        import yaml
+
+        return yaml.safe_dump(robot, sort_keys=False, default_flow_style=None)
+    raise LiveError("a robot is a robot file's text or its mapping (docs/world-files.md)")
+
+
+def _robot_state(index: int, robot, lcd_frame: int | None = None) -> dict:
     """A robot as the page draws it: pose, and each device's last values (reading none: no side effect)."""
     sensors = []
     for port, sensor in robot.sensors.items():
@@ -427,6 +542,10 @@ def _robot_state(index: int, robot) -> dict:
                 "kind": sensor.spec.kind,
                 "mode": sensor.mode,
                 "values": list(last[2]) if last else [],
+                "angle_deg": sensor.spec.angle_deg,
+                "radius_cm": sensor.spec.radius_cm,
+                "facing": sensor.spec.facing,
+                "aim_deg": sensor.spec.aim_deg,
             }
         )
     motors = [
@@ -444,6 +563,8 @@ def _robot_state(index: int, robot) -> dict:
         "sensors": sensors,
         "motors": motors,
         "leds": leds,
+        "lcd_frame": lcd_frame,
+        "body": {**robot.spec.body.__dict__, "color": list(robot.spec.color)},
     }
 
 

@@ -13,16 +13,23 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import re
+import struct
 import threading
 import time
+import zlib
 from http import HTTPStatus
 from http.server import ThreadingHTTPServer
 from pathlib import Path
+from urllib.parse import parse_qs
 
+from ..devices import registry
 from ..editor.server import STATIC_DIR as EDITOR_STATIC_DIR
 from ..editor.server import EditorHandler, WorldFile
 from ..editor.world_json import BadEdit, MazeSource
 from ..world.cell import Cell
+from ..world.robot_spec import SENSOR_PORTS, robot_yaml
 from ..world.source_error import WorldFileError
 from .engine import LiveError, LiveRun
 
@@ -78,6 +85,63 @@ class LiveWorldFile:
         return {"saved": result["saved"], "changed": result["changed"]}
 
 
+LCD_WIDTH, LCD_HEIGHT = 178, 128
+ROBOT_FILE_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_ .-]*\.yaml")
+
+
+def grey_png(pixels: bytes, width: int = LCD_WIDTH, height: int = LCD_HEIGHT) -> bytes:
+    """8-bit grey pixels, row by row, as a PNG file (what the page shows an LCD frame with)."""
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    rows = b"".join(b"\x00" + pixels[y * width : (y + 1) * width] for y in range(height))
+    header = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    return (
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", header)
+        + chunk(b"IDAT", zlib.compress(rows))
+        + chunk(b"IEND", b"")
+    )
+
+
+def robot_json(live: LiveRun, index: int) -> dict:
+    """GET /api/robot: a robot as its file's text and mapping, its own file, and what the page may choose
+    from (the registry's sensor kinds, each with its facings and options; the sensor ports)."""
+    import yaml
+
+    spec = live.robot_spec(index)
+    own = live.robot_file(index)
+    return {
+        "robot": index + 1,
+        "text": live.robot_text(index),
+        "mapping": yaml.safe_load(robot_yaml(spec)),
+        "file": None if own is None else str(own),
+        "kinds": {
+            kind: {
+                "facings": list(registry.sensor_class(kind).FACINGS),
+                "options": {
+                    name: default
+                    for name, (default, _unit, _m) in registry.sensor_class(kind).OPTIONS.items()
+                },
+            }
+            for kind in registry.sensor_kinds()
+        },
+        "ports": list(SENSOR_PORTS),
+    }
+
+
+def write_atomically(path: Path, text: str) -> None:
+    """The file's new text, all of it or none (a temporary file beside it, then renamed over it)."""
+    part = path.with_name(f".{path.name}.{os.getpid()}.part")
+    try:
+        part.write_text(text, encoding="utf-8")
+        os.replace(part, path)
+    finally:
+        if part.exists():
+            part.unlink()
+
+
 def _plain(value: object) -> object:
     """numpy numbers and the like, as JSON numbers."""
     if hasattr(value, "item"):
@@ -123,6 +187,10 @@ class LiveHandler(EditorHandler):
             self._events()
         elif path == "/api/world":
             self._world()
+        elif path == "/api/lcd":
+            self._lcd()
+        elif path == "/api/robot":
+            self._robot()
         elif path in STATIC_FILES:
             folder, name, content_type = STATIC_FILES[path]
             self._send(HTTPStatus.OK, (folder / name).read_bytes(), content_type)
@@ -130,6 +198,49 @@ class LiveHandler(EditorHandler):
             self._error(HTTPStatus.NOT_FOUND, f"no such page {path!r}; the API is described in docs/live.md")
 
     do_HEAD = do_GET
+
+    def _query_int(self, name: str, default: int | None = None) -> int | None:
+        """?name=N as an int (default if absent); BadRequest if not a whole number."""
+        query = parse_qs(self.path.split("?", 1)[1]) if "?" in self.path else {}
+        if name not in query:
+            return default
+        try:
+            return int(query[name][-1])
+        except ValueError:
+            raise BadRequest(f"{name}={query[name][-1]!r} is not a whole number") from None
+
+    def _robot_number(self) -> int:
+        number = self._query_int("robot", 1)
+        count = len(self.server.live.programs)
+        if not 1 <= number <= count:
+            raise BadRequest(f"there is no robot {number}: robots are 1 to {count}")
+        return number
+
+    def _lcd(self) -> None:
+        """GET /api/lcd?robot=N[&frame=F]: an LCD frame as a PNG (the robot's current one without frame)."""
+        live = self.server.live
+        try:
+            number = self._robot_number()
+            frame = self._query_int("frame")
+        except BadRequest as err:
+            self._error(HTTPStatus.BAD_REQUEST, str(err))
+            return
+        if frame is None:
+            robots = live.state()["robots"]
+            frame = robots[number - 1]["lcd_frame"] if number <= len(robots) else None
+        pixels = None if frame is None else live.lcd_frame(frame)
+        if pixels is None:
+            self._error(HTTPStatus.NOT_FOUND, "no such LCD frame in this run (the program has not drawn it)")
+            return
+        self._send(HTTPStatus.OK, grey_png(pixels), "image/png")
+
+    def _robot(self) -> None:
+        try:
+            answer = robot_json(self.server.live, self._robot_number() - 1)
+        except BadRequest as err:
+            self._error(HTTPStatus.BAD_REQUEST, str(err))
+            return
+        self._json(HTTPStatus.OK, answer)
 
     def _world(self) -> None:
         live = self.server.live
@@ -337,6 +448,67 @@ def _save_world(server: LiveServer, data: dict) -> dict:
     return {**server.live.state(), "saved": saved}
 
 
+def _set_robot(server: LiveServer, data: dict) -> dict:
+    _only(data, {"robot", "text", "mapping"})
+    number = _robot(server, data)
+    text = _field(data, "text", (str,), required=False)
+    mapping = _field(data, "mapping", (dict,), required=False)
+    if (text is None) == (mapping is None):
+        raise BadRequest("give the robot as 'text' (a robot file's YAML) or as 'mapping', one of them")
+    try:
+        return server.live.set_robot(number - 1, text if text is not None else mapping)
+    except WorldFileError as err:
+        raise BadRequest(str(err)) from None
+
+
+def _robot(server: LiveServer, data: dict) -> int:
+    number = _field(data, "robot", (int,))
+    if not 1 <= number <= len(server.live.programs):
+        raise BadRequest(f"there is no robot {number}: robots are 1 to {len(server.live.programs)}")
+    return number
+
+
+def _save_robot(server: LiveServer, data: dict) -> dict:
+    """Write a robot to its own robot file (the old one kept as .bak), or to a new file `file` in the
+    folder of the world file (or of the first program, for a shipped world); never over another file
+    without replace: true."""
+    _only(data, {"robot", "file", "replace"})
+    number = _robot(server, data)
+    name = _field(data, "file", (str,), required=False, allow_none=True)
+    replace = bool(_field(data, "replace", (bool,), required=False))
+    live = server.live
+    if name is None:
+        path = live.robot_file(number - 1)
+        if path is None:
+            spec = live.robot_spec(number - 1)
+            raise LiveError(
+                f"robot {number} ({spec.name}) did not come from a robot file of yours (a shipped robot, one "
+                "written inside the world file, or changed here), so there is no file to write it to; give a "
+                "new file name (e.g. my-robot.yaml) to save it in the folder of your world or program"
+            )
+        replace = True
+    else:
+        if not ROBOT_FILE_NAME.fullmatch(name) or ".." in name:
+            raise BadRequest(
+                f"{name!r} is not a plain file name ending in .yaml (letters, digits, _ - . and spaces, no "
+                "folders); the robot is saved in the folder of your world or program"
+            )
+        folder = (
+            server.world_file.path.parent if server.world_file.path else live.programs[0].resolve().parent
+        )
+        path = folder / name
+    text = live.robot_text(number - 1)
+    if path.exists() and not replace:
+        raise LiveError(
+            f"{path} already exists; send replace: true to write over it (the old one is kept as .bak)"
+        )
+    if path.exists():
+        write_atomically(path.with_name(path.name + ".bak"), path.read_text(encoding="utf-8"))
+    write_atomically(path, text)
+    live.adopt_robot_file(number - 1, path)
+    return {**live.state(), "saved": {"saved": str(path), "robot": number}}
+
+
 COMMANDS = {
     "/api/pause": _pause,
     "/api/resume": _resume,
@@ -347,6 +519,8 @@ COMMANDS = {
     "/api/move": _move,
     "/api/cell": _cell,
     "/api/save-world": _save_world,
+    "/api/robot": _set_robot,
+    "/api/save-robot": _save_robot,
 }
 
 

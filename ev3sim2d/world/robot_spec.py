@@ -376,6 +376,62 @@ def _check_wheels(motors_node: Node, motors: list[tuple[MotorSpec, Node]]) -> No
             )
 
 
+# -- writing ------------------------------------------------------------------------
+
+
+def _number(value: float) -> str:
+    value = float(value)
+    return str(int(value)) if value.is_integer() else repr(value)
+
+
+def robot_yaml(spec: RobotSpec) -> str:
+    """The robot as a robot file's text, in the shipped files' layout; parse_robot reads it back equal
+    (its comments are not kept: a RobotSpec has none)."""
+    body = spec.body
+    lines = [
+        "# a robot file (docs/world-files.md); written by ev3sim2d",
+        f"name: {_quoted(spec.name)}",
+        f"wheel_diameter_mm: {_number(spec.wheel_diameter_mm)}",
+        f"axle_track_mm: {_number(spec.axle_track_mm)}",
+        "body:",
+        f"  front_cm: {_number(body.front_cm)}",
+        f"  back_cm: {_number(body.back_cm)}",
+        f"  width_cm: {_number(body.width_cm)}",
+        f"color: [{', '.join(str(c) for c in spec.color)}]",
+        "",
+        "motors:",
+    ]
+    for motor in spec.motors:
+        parts = [f"port: {motor.port[3:]}", f"kind: {motor.kind}"]
+        if motor.wheel:
+            parts.append(f"wheel: {motor.wheel}")
+        if motor.reversed:
+            parts.append("mounted: reversed")
+        lines.append(f"  - {{{', '.join(parts)}}}")
+    lines += ["", "sensors:" if spec.sensors else "sensors: []"]
+    for sensor in spec.sensors:
+        parts = [
+            f"port: {sensor.port[2:]}",
+            f"kind: {sensor.kind}",
+            f"angle_deg: {_number(sensor.angle_deg)}",
+            f"radius_cm: {_number(sensor.radius_cm)}",
+            f"facing: {sensor.facing}",
+        ]
+        if sensor.facing == "forward" and sensor.aim_deg:
+            parts.append(f"aim_deg: {_number(sensor.aim_deg)}")
+        if sensor.noise:
+            parts.append(f"noise: {_number(sensor.noise)}")
+        parts += [f"{name}: {_number(value)}" for name, value in sensor.options.items()]
+        lines.append(f"  - {{{', '.join(parts)}}}")
+    return "\n".join(lines) + "\n"
+
+
+def _quoted(text: str) -> str:
+    import json
+
+    return json.dumps(text, ensure_ascii=False)  # a JSON string is a YAML string
+
+
 # -- shipped robots ---------------------------------------------------------------------
 
 

@@ -219,3 +219,107 @@ def test_the_page_and_the_shared_world_drawing_are_served(live_server):
         conn = http.client.HTTPConnection("127.0.0.1", client.port, timeout=10)
         conn.request("GET", path)
         assert conn.getresponse().status == 200, path
+
+
+DRAW = """
+    from ev3dev2.display import Display
+    import time
+    lcd = Display()
+    lcd.draw.rectangle((0, 0, 177, 127), outline="black")
+    lcd.draw.ellipse((120, 60, 160, 100), fill="black")
+    lcd.update()
+    time.sleep(30)
+"""
+
+
+def _get_bytes(port: int, path: str) -> tuple[int, str, bytes]:
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+    conn.request("GET", path)
+    response = conn.getresponse()
+    body = response.read()
+    conn.close()
+    return response.status, response.getheader("Content-Type"), body
+
+
+def test_the_lcd_frame_is_in_the_state_by_number_and_served_as_a_png(live_server):
+    client, _, _ = live_server(DRAW)
+    status, state = client.post("/api/step", {"ms": 500})
+    frame = state["robots"][0]["lcd_frame"]
+    assert status == 200 and frame is not None
+    status, kind, png = _get_bytes(client.port, f"/api/lcd?robot=1&frame={frame}")
+    assert status == 200 and kind == "image/png" and png.startswith(b"\x89PNG")
+    import zlib
+
+    rows = zlib.decompress(png[png.index(b"IDAT") + 4 :])  # one IDAT chunk: 128 rows of a filter byte + 178
+    assert len(rows) == 128 * 179 and rows[1:179] == bytes([0] * 178)  # the black rectangle's top edge
+    assert _get_bytes(client.port, "/api/lcd?robot=1")[2] == png  # the robot's current frame
+    assert _get_bytes(client.port, "/api/lcd?robot=1&frame=999")[0] == 404
+
+
+def _colour_sensor(mapping: dict) -> dict:
+    return next(s for s in mapping["sensors"] if s["kind"] == "color")
+
+
+def test_a_sensor_moved_on_the_page_runs_from_0_s_paused_with_its_new_place(live_server):
+    client, live, _ = live_server()
+    client.post("/api/step", {"ms": 300})
+    status, robot = client.get("/api/robot?robot=1")
+    assert status == 200 and robot["file"] is None and "facings" in robot["kinds"]["color"]
+    mapping = robot["mapping"]
+    _colour_sensor(mapping)["angle_deg"] = 90
+    _colour_sensor(mapping)["radius_cm"] = 5
+    status, state = client.post("/api/robot", {"robot": 1, "mapping": mapping})
+    assert status == 200 and state["t_s"] == 0 and state["status"] == "paused"
+    sensor = next(s for s in state["robots"][0]["sensors"] if s["kind"] == "color")
+    assert (sensor["angle_deg"], sensor["radius_cm"]) == (90, 5)
+    assert "angle_deg: 90" in client.get("/api/robot?robot=1")[1]["text"]
+    status, state = client.post("/api/reload")  # a reload keeps the changed robot
+    sensor = next(s for s in state["robots"][0]["sensors"] if s["kind"] == "color")
+    assert sensor["angle_deg"] == 90
+    status, state = client.post("/api/reset")  # a reset forgets it
+    assert next(s for s in state["robots"][0]["sensors"] if s["kind"] == "color")["angle_deg"] == 0
+
+
+def test_a_robot_the_robot_files_refuse_is_refused_with_the_files_error(live_server):
+    client, _, _ = live_server()
+    mapping = client.get("/api/robot?robot=1")[1]["mapping"]
+    _colour_sensor(mapping)["kind"] = "colour"
+    status, answer = client.post("/api/robot", {"robot": 1, "mapping": mapping})
+    assert status == 400 and "did you mean 'color'" in answer["error"]
+    text = client.get("/api/robot?robot=1")[1]["text"]
+    line = next(n for n, row in enumerate(text.splitlines(), 1) if "kind: ultrasonic" in row)
+    text = text.replace("facing: forward, cone_deg", "facing: down, cone_deg")
+    status, answer = client.post("/api/robot", {"robot": 1, "text": text})
+    assert status == 400 and answer["error"].startswith(f"the page's robot:{line}:")
+    assert "write `facing: forward`" in answer["error"]
+    client.post("/api/resume")
+    status, answer = client.post(
+        "/api/robot", {"robot": 1, "text": client.get("/api/robot?robot=1")[1]["text"]}
+    )
+    assert status == 409 and "pause" in answer["error"]
+
+
+def test_a_robot_is_saved_to_a_new_file_that_reads_back_equal_and_then_to_that_file(live_server, tmp_path):
+    client, live, _ = live_server()
+    status, answer = client.post("/api/save-robot", {"robot": 1})
+    assert status == 409 and "new file name" in answer["error"]  # the shipped driving base is not ours
+    mapping = client.get("/api/robot?robot=1")[1]["mapping"]
+    _colour_sensor(mapping)["radius_cm"] = 8.5
+    client.post("/api/robot", {"robot": 1, "mapping": mapping})
+    for bad in ("../mine.yaml", "sub/mine.yaml", "mine.txt", ".yaml"):
+        status, answer = client.post("/api/save-robot", {"robot": 1, "file": bad})
+        assert status == 400 and "plain file name" in answer["error"], bad
+    status, answer = client.post("/api/save-robot", {"robot": 1, "file": "mine.yaml"})
+    assert status == 200 and answer["saved"]["saved"] == str(tmp_path / "mine.yaml")
+    from dataclasses import replace
+
+    from ev3sim2d.world.robot_spec import load_robot
+
+    saved = load_robot(tmp_path / "mine.yaml")
+    assert replace(saved, source=None) == replace(live.robot_spec(0), source=None)
+    assert saved.sensor("in3").radius_cm == 8.5
+    status, answer = client.post("/api/save-robot", {"robot": 1, "file": "mine.yaml"})
+    assert status == 409 and "replace: true" in answer["error"]
+    assert client.get("/api/robot?robot=1")[1]["file"] == str(tmp_path / "mine.yaml")
+    status, answer = client.post("/api/save-robot", {"robot": 1})  # its own file now
+    assert status == 200 and (tmp_path / "mine.yaml.bak").is_file()
