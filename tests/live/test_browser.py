@@ -205,3 +205,42 @@ def test_a_crash_shows_file_and_line(live_page):
     page.wait_for_selector("#error:not([hidden])")
     assert f"{path}:3" in page.inner_text("#error-where")
     assert "ZeroDivisionError" in page.inner_text("#error")
+
+
+def test_a_sensor_moved_on_the_page_is_applied_and_drawn_there(live_page):
+    page, live, _ = live_page(paused=True)
+    page.wait_for_function("ev3live.robotEdit() !== null")
+    index = page.evaluate("ev3live.robotEdit().mapping.sensors.findIndex(s => s.kind === 'color')")
+    row = page.locator("#sensor-editor tr").nth(index + 1)  # after the heading row
+    stage = page.locator("#canvas")
+    before = stage.screenshot()
+    row.locator("input[data-field=radius_cm]").fill("2")
+    row.locator("input[data-field=radius_cm]").dispatch_event("change")
+    page.click("#apply-robot")
+    wait_state(page, "s.run === 2 && s.robots[0].sensors.some(x => x.kind === 'color' && x.radius_cm === 2)")
+    assert live.robot_spec(0).sensor("in3").radius_cm == 2
+    page.wait_for_timeout(200)
+    assert stage.screenshot() != before  # the colour sensor's spot moved in, nearer the robot's centre
+    assert page.errors == []
+
+
+def test_the_brick_shows_its_lights_in_colour_and_its_screen(live_page):
+    program = """
+        from ev3dev2.display import Display
+        from ev3dev2.led import Leds
+        import time
+        Leds().set_color("LEFT", "RED")
+        lcd = Display()
+        lcd.draw.rectangle((0, 0, 177, 127), fill="black")
+        lcd.update()
+        time.sleep(30)
+    """
+    page, _, _ = live_page(program)
+    wait_state(page, "s.robots[0].lcd_frame !== null && s.t_s > 0.5")
+    page.wait_for_function(
+        "document.querySelector('.led[data-side=left]').style.background === 'rgb(255, 0, 0)'"
+    )
+    page.wait_for_function(  # the screen's middle is black, as the program drew it
+        "document.querySelector('#bricks canvas').getContext('2d').getImageData(89, 64, 1, 1).data[0] < 40"
+    )
+    assert page.errors == []

@@ -27,6 +27,13 @@
   let series = new Map(); // key -> {label, samples: [[t, v]], on}
   let lastSampleT = -1;
   let plotChanged = true;
+  const TRAIL_KEPT = 6000; // points kept per robot's trail
+  let trails = []; // per robot: [x0, y0, x1, y1, ...] in cm, this run
+  let worldLayer = null; // the cells drawn once, redrawn only when the world or the canvas changes
+  let worldLayerKey = "";
+  const frameStats = { count: 0, drawMs: [] }; // for the benchmark (benchmarks/live_page.py)
+  const bricks = new Map(); // robot number -> {leds, canvas, frame}
+  let robotEdit = null; // GET api/robot: {robot, mapping, kinds, ports, file}
 
   function say(text, kind) {
     const box = document.getElementById("message");
@@ -63,6 +70,7 @@
       const data = await response.json();
       if (!response.ok) return say(`Cannot load the world: ${data.error}`, "error");
       world = data;
+      worldLayerKey = "";
       document.getElementById("title").textContent = data.title;
       document.title = `${data.title} – ev3sim2d live`;
     } catch (err) {
@@ -79,7 +87,16 @@
       run = state.run;
       for (const s of series.values()) s.samples = [];
       lastSampleT = -1;
+      trails = [];
+      loadRobot(robotEdit ? robotEdit.robot : 1);
     }
+    state.robots.forEach((r, i) => {
+      const trail = trails[i] || (trails[i] = []);
+      const n = trail.length;
+      if (n && Math.abs(trail[n - 2] - r.x_cm) + Math.abs(trail[n - 1] - r.y_cm) < 0.3) return;
+      trail.push(r.x_cm, r.y_cm);
+      if (trail.length > 2 * TRAIL_KEPT) trail.splice(0, trail.length - 2 * TRAIL_KEPT);
+    });
     if (world && state.world_version > world.world_version) loadWorld();
     sample(state);
   }
@@ -210,12 +227,77 @@
     return { x: pose.x_cm + reach * Math.cos(a), y: pose.y_cm + reach * Math.sin(a) };
   }
 
+  function drawTrails() {
+    ctx.lineWidth = Math.max(1, view.dpr * 1.5);
+    ctx.lineJoin = "round";
+    trails.forEach((trail, i) => {
+      if (trail.length < 4) return;
+      ctx.strokeStyle = PLOT_COLORS[(i + 1) % PLOT_COLORS.length];
+      ctx.globalAlpha = 0.75;
+      ctx.beginPath();
+      ctx.moveTo(W.pxX(view, trail[0]), W.pxY(view, trail[1]));
+      for (let k = 2; k < trail.length; k += 2) ctx.lineTo(W.pxX(view, trail[k]), W.pxY(view, trail[k + 1]));
+      ctx.stroke();
+      ctx.globalAlpha = 1;
+    });
+  }
+
+  // how far a sensor that looks forward sees now, in cm (its reading), for its beam
+  function beamCm(sensor) {
+    const v = sensor.values[0];
+    if (typeof v !== "number") return 20;
+    if (sensor.mode === "US-DIST-CM") return v / 10;
+    if (sensor.mode === "US-DIST-IN") return (v / 10) * 2.54;
+    if (sensor.mode === "IR-PROX") return (v / 100) * 70;
+    return 20;
+  }
+
+  // where each sensor sits: a spot on the floor for one that looks down, a beam for one that looks ahead
+  function drawSensors(robot, pose) {
+    const a = (pose.heading_deg * Math.PI) / 180;
+    for (const s of robot.sensors) {
+      if (s.radius_cm === undefined || s.kind === "gyro" || s.kind === "nxt-sound") continue;
+      const b = a + (s.angle_deg * Math.PI) / 180;
+      const x = pose.x_cm + s.radius_cm * Math.cos(b), y = pose.y_cm + s.radius_cm * Math.sin(b);
+      const px = W.pxX(view, x), py = W.pxY(view, y);
+      if (s.facing === "forward" && s.kind !== "touch") {
+        const d = a + ((s.aim_deg || 0) * Math.PI) / 180;
+        const reach = Math.max(0, Math.min(255, beamCm(s)));
+        ctx.strokeStyle = "rgba(86, 180, 233, 0.8)";
+        ctx.lineWidth = Math.max(1, view.dpr);
+        ctx.beginPath();
+        ctx.moveTo(px, py);
+        ctx.lineTo(W.pxX(view, x + reach * Math.cos(d)), W.pxY(view, y + reach * Math.sin(d)));
+        ctx.stroke();
+      }
+      ctx.fillStyle = s.facing === "down" ? "rgb(255, 255, 255)" : "rgb(86, 180, 233)";
+      ctx.strokeStyle = "rgb(20, 20, 20)";
+      ctx.lineWidth = Math.max(1, view.dpr);
+      ctx.beginPath();
+      ctx.arc(px, py, Math.max(2.5 * view.dpr, 0.8 * view.scale), 0, 2 * Math.PI);
+      ctx.fill();
+      ctx.stroke();
+    }
+  }
+
   function drawWorld() {
     if (!world) return;
     view = W.fit(canvas, world);
-    W.drawCells(ctx, view, world, world.palette);
+    const key = `${canvas.width}x${canvas.height}`;
+    if (key !== worldLayerKey) {
+      worldLayer = worldLayer || document.createElement("canvas");
+      worldLayer.width = canvas.width;
+      worldLayer.height = canvas.height;
+      W.drawCells(worldLayer.getContext("2d"), view, world, world.palette);
+      worldLayerKey = key;
+    }
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(worldLayer, 0, 0);
+    drawTrails();
     poses().forEach((pose, i) => {
-      W.drawRobotBody(ctx, view, world.robot, pose);
+      const robot = latest.robots[i];
+      W.drawRobotBody(ctx, view, robot.body || world.robot, pose);
+      drawSensors(robot, pose);
       if (latest.robots.length > 1) {
         ctx.fillStyle = "white";
         ctx.font = `bold ${Math.round(12 * view.dpr)}px ui-monospace, monospace`;
@@ -238,12 +320,16 @@
   }
 
   function frame() {
+    const started = performance.now();
     drawWorld();
     if (latest && latest !== drawn) {
       drawn = latest;
       showPanel(latest);
     }
     drawPlot();
+    frameStats.count++;
+    frameStats.drawMs.push(performance.now() - started);
+    if (frameStats.drawMs.length > 2000) frameStats.drawMs.splice(0, 1000);
     requestAnimationFrame(frame);
   }
 
@@ -296,9 +382,9 @@
         devices.append(table(["motor", "kind", "state", "position", "speed"],
           robot.motors.map((m) => [m.port, m.kind, m.state || "", num(m.position), num(m.speed)])));
       }
-      const leds = Object.entries(robot.leds);
-      if (leds.length) devices.append(table(["LED", "brightness"], leds.map(([n, b]) => [n, num(b)])));
     }
+    showBricks(state);
+    document.getElementById("apply-robot").disabled = !(state.status === "paused" || state.status === "ended");
     const printed = document.getElementById("printed");
     const atBottom = printed.scrollTop + printed.clientHeight >= printed.scrollHeight - 4;
     printed.textContent = "";
@@ -319,6 +405,184 @@
       document.getElementById("error-text").textContent =
         `${error.type}: ${error.message} — fix the program and press Reload (or save it: it reloads by itself).`;
       document.getElementById("error-traceback").textContent = error.traceback || "";
+    }
+  }
+
+  // -- the brick: its two lights (a red and a green LED each: their mix is the colour) and its screen
+  const brightness = (b) => Math.max(0, Math.min(1, (b || 0) / 255));
+  function ledColor(leds, side) {
+    const red = brightness(leds[`${side}:red:brick-status`]), green = brightness(leds[`${side}:green:brick-status`]);
+    if (red === 0 && green === 0) return "rgb(35, 35, 35)";
+    return `rgb(${Math.round(255 * red)}, ${Math.round(255 * green)}, 0)`;
+  }
+
+  function showBricks(state) {
+    const box = document.getElementById("bricks");
+    for (const robot of state.robots) {
+      let brick = bricks.get(robot.number);
+      if (!brick) {
+        const row = document.createElement("div");
+        row.className = "brick";
+        const leds = document.createElement("div");
+        leds.className = "leds";
+        const lights = {};
+        for (const [side, name] of [["led0", "left"], ["led1", "right"]]) {
+          const label = document.createElement("span");
+          const swatch = document.createElement("span");
+          swatch.className = "led";
+          swatch.dataset.side = name;
+          label.append(swatch, document.createTextNode(` ${name}`));
+          leds.append(label);
+          lights[side] = swatch;
+        }
+        const who = document.createElement("span");
+        who.textContent = state.robots.length > 1 ? `robot ${robot.number}` : "";
+        leds.prepend(who);
+        const screen = document.createElement("canvas");
+        screen.width = 178;
+        screen.height = 128;
+        screen.dataset.robot = robot.number;
+        screen.setAttribute("aria-label", `the LCD of robot ${robot.number}`);
+        row.append(leds, screen);
+        box.append(row);
+        brick = { lights: lights, canvas: screen, frame: undefined, run: -1 };
+        bricks.set(robot.number, brick);
+      }
+      for (const side of ["led0", "led1"]) {
+        const color = ledColor(robot.leds, side);
+        if (brick.lights[side].style.background !== color) brick.lights[side].style.background = color;
+      }
+      if (brick.frame !== robot.lcd_frame || brick.run !== state.run) showLcd(brick, robot, state.run);
+    }
+  }
+
+  function showLcd(brick, robot, runNumber) {
+    brick.frame = robot.lcd_frame;
+    brick.run = runNumber;
+    const c = brick.canvas.getContext("2d");
+    if (robot.lcd_frame === null) {
+      c.fillStyle = "rgb(155, 165, 140)";
+      c.fillRect(0, 0, 178, 128);
+      return;
+    }
+    const image = new Image();
+    image.onload = () => { if (brick.frame === robot.lcd_frame) c.drawImage(image, 0, 0); };
+    image.src = `api/lcd?robot=${robot.number}&frame=${robot.lcd_frame}&run=${runNumber}`;
+  }
+
+  // -- the robot's sensors: changed while paused (POST api/robot), saved to a robot file ----------
+  async function loadRobot(number) {
+    try {
+      const response = await fetch(`api/robot?robot=${number}`);
+      const data = await response.json();
+      if (!response.ok) return say(data.error, "error");
+      robotEdit = data;
+      showRobotEditor();
+    } catch (err) {
+      say(`Cannot read the robot: ${err}`, "error");
+    }
+  }
+
+  function showRobotEditor() {
+    const pick = document.getElementById("edit-robot");
+    const count = latest ? latest.robots.length : 1;
+    document.getElementById("edit-robot-box").hidden = count < 2;
+    if (pick.options.length !== count) {
+      pick.textContent = "";
+      for (let n = 1; n <= count; n++) pick.append(new Option(`robot ${n}`, String(n)));
+    }
+    pick.value = String(robotEdit.robot);
+    const t = document.getElementById("sensor-editor");
+    t.textContent = "";
+    const head = document.createElement("tr");
+    for (const h of ["port", "kind", "angle°", "radius cm", "facing", ""]) {
+      const th = document.createElement("th");
+      th.textContent = h;
+      head.append(th);
+    }
+    t.append(head);
+    const sensors = robotEdit.mapping.sensors || [];
+    sensors.forEach((sensor, i) => {
+      const tr = document.createElement("tr");
+      tr.dataset.index = i;
+      const select = (field, options, value) => {
+        const el = document.createElement("select");
+        el.dataset.field = field;
+        for (const o of options) el.append(new Option(o, o));
+        el.value = value;
+        el.addEventListener("change", () => {
+          sensor[field] = field === "port" ? Number(el.value.slice(2)) : el.value;
+          if (field === "kind") {
+            const kind = robotEdit.kinds[el.value];
+            for (const k of Object.keys(sensor)) {
+              if (!["port", "kind", "angle_deg", "radius_cm", "facing", "aim_deg", "noise"].includes(k)) delete sensor[k];
+            }
+            if (!kind.facings.includes(sensor.facing)) sensor.facing = kind.facings[0];
+            if (sensor.facing !== "forward") delete sensor.aim_deg;
+            showRobotEditor();
+          } else if (field === "facing" && el.value !== "forward") delete sensor.aim_deg;
+        });
+        return el;
+      };
+      const number = (field) => {
+        const el = document.createElement("input");
+        el.type = "number";
+        el.step = field === "angle_deg" ? "5" : "0.5";
+        el.dataset.field = field;
+        el.value = String(sensor[field] ?? 0);
+        el.addEventListener("change", () => { sensor[field] = Number(el.value); });
+        return el;
+      };
+      const port = typeof sensor.port === "number" ? `in${sensor.port}` : String(sensor.port);
+      const cells = [
+        select("port", robotEdit.ports, port.startsWith("in") ? port : `in${port}`),
+        select("kind", Object.keys(robotEdit.kinds), sensor.kind),
+        number("angle_deg"),
+        number("radius_cm"),
+        select("facing", robotEdit.kinds[sensor.kind] ? robotEdit.kinds[sensor.kind].facings : ["down", "forward"], sensor.facing || "down"),
+      ];
+      const remove = document.createElement("button");
+      remove.textContent = "×";
+      remove.title = "take this sensor off";
+      remove.addEventListener("click", () => { sensors.splice(i, 1); showRobotEditor(); });
+      cells.push(remove);
+      for (const el of cells) { const td = document.createElement("td"); td.append(el); tr.append(td); }
+      t.append(tr);
+    });
+    const file = document.getElementById("robot-file-name");
+    file.placeholder = robotEdit.file ? robotEdit.file.split("/").pop() : "new-file.yaml";
+  }
+
+  function addSensor() {
+    if (!robotEdit) return;
+    const sensors = robotEdit.mapping.sensors || (robotEdit.mapping.sensors = []);
+    const used = new Set(sensors.map((s) => `in${String(s.port).replace("in", "")}`));
+    const free = robotEdit.ports.find((p) => !used.has(p));
+    if (!free) return say("All four sensor ports are taken.", "error");
+    sensors.push({ port: Number(free.slice(2)), kind: "color", angle_deg: 0, radius_cm: 7, facing: "down" });
+    showRobotEditor();
+  }
+
+  async function applyRobot() {
+    if (!robotEdit) return;
+    const answer = await post("api/robot", { robot: robotEdit.robot, mapping: robotEdit.mapping });
+    if (answer) say(`Robot ${robotEdit.robot} changed; the run starts over at 0 s, paused.`, "ok");
+  }
+
+  async function saveRobot() {
+    if (!robotEdit) return;
+    const name = document.getElementById("robot-file-name").value.trim();
+    const body = { robot: robotEdit.robot };
+    if (name) body.file = name;
+    let answer = await post("api/save-robot", body);
+    if (!answer && name && document.getElementById("message").textContent.includes("replace: true")) {
+      if (window.confirm(`${name} exists. Write over it (the old one is kept as ${name}.bak)?`)) {
+        answer = await post("api/save-robot", { ...body, replace: true });
+      }
+    }
+    if (answer) {
+      say(`Saved robot ${answer.saved.robot} to ${answer.saved.saved}.`, "ok");
+      loadRobot(robotEdit.robot);
     }
   }
 
@@ -378,6 +642,7 @@
     const next = made.cell;
     if (next.wall === cell.wall && next.shade === cell.shade && next.color === cell.color) return;
     world.cells[row][col] = next; // drawn at once; the server's world follows
+    worldLayerKey = "";
     post("api/cell", { col: col, row: row, wall: next.wall, shade: next.shade, color: next.color }).then((answer) => {
       if (!answer) loadWorld();
     });
@@ -463,6 +728,10 @@
     document.getElementById("reload").addEventListener("click", () => post("api/reload"));
     document.getElementById("reset").addEventListener("click", () => post("api/reset"));
     document.getElementById("save-world").addEventListener("click", saveWorld);
+    document.getElementById("add-sensor").addEventListener("click", addSensor);
+    document.getElementById("apply-robot").addEventListener("click", applyRobot);
+    document.getElementById("save-robot").addEventListener("click", saveRobot);
+    document.getElementById("edit-robot").addEventListener("change", (event) => loadRobot(Number(event.target.value)));
     document.querySelectorAll("#tools button").forEach((b) => b.addEventListener("click", () => setTool(b.dataset.tool)));
     document.getElementById("paint-color").addEventListener("change", () => setTool("paint"));
     canvas.addEventListener("pointerdown", onDown);
@@ -501,6 +770,8 @@
     state: () => latest,
     world: () => world,
     series: () => [...series.entries()].map(([key, s]) => ({ key: key, label: s.label, on: s.on, samples: s.samples.length })),
+    frames: () => ({ count: frameStats.count, drawMs: frameStats.drawMs.slice() }),
+    robotEdit: () => robotEdit,
     ready: () => world !== null && latest !== null && view !== null && latest.robots.length > 0,
   };
   init();
