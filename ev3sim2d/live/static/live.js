@@ -31,6 +31,7 @@
   let trails = []; // per robot: [x0, y0, x1, y1, ...] in cm, this run
   let worldLayer = null; // the cells drawn once, redrawn only when the world or the canvas changes
   let worldLayerKey = "";
+  let panelShownAt = 0;
   const frameStats = { count: 0, drawMs: [] }; // for the benchmark (benchmarks/live_page.py)
   const bricks = new Map(); // robot number -> {leds, canvas, frame}
   let robotEdit = null; // GET api/robot: {robot, mapping, kinds, ports, file}
@@ -322,8 +323,10 @@
   function frame() {
     const started = performance.now();
     drawWorld();
-    if (latest && latest !== drawn) {
+    // the panel's tables at most 10 times a second (text that changes faster cannot be read anyway)
+    if (latest && latest !== drawn && (started - panelShownAt > 100 || !drawn || latest.status !== drawn.status || latest.run !== drawn.run)) {
       drawn = latest;
+      panelShownAt = started;
       showPanel(latest);
     }
     drawPlot();
