@@ -45,6 +45,7 @@ UNPRIVILEGED_UID = 65534
 SPIN_S = 0.002  # how long a side spins before it sleeps: waking a sleeper costs about 100 us here
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
+_brick_sessions: set[int] = set()  # the sessions of every brick this process started (each leads its own)
 _subreaper_since: int | None = None  # when this process became a subreaper (clock ticks since boot)
 
 
@@ -186,8 +187,11 @@ def _is_subreaper() -> bool:
 def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
     """As a subreaper: kill and reap every child process no one started on purpose (a brick's orphans).
 
-    Children in `keep`, bricks still running, and processes started before this process became a
-    subreaper (a test runner's own helpers) are left alone."""
+    An orphan is a child of this process in a brick's session: a brick leads a session of its own,
+    and its sandbox forbids setsid and setpgid, so nothing a program forks leaves it.  Children in
+    `keep`, bricks still running, processes started before this process became a subreaper, and
+    every child of another session (a browser the live page opened, a test runner's helpers) are
+    left alone."""
     if not _is_subreaper() or _subreaper_since is None:
         return 0
     me = os.getpid()
@@ -207,6 +211,8 @@ def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
             continue
         fields = stat[stat.rfind(")") + 2 :].split()
         if len(fields) < 20 or int(fields[1]) != me or int(entry) in mine:
+            continue
+        if int(fields[3]) not in _brick_sessions:  # (fields: state, ppid, pgrp, session, ...)
             continue
         if int(fields[19]) >= _subreaper_since:  # started since: a brick's, orphaned
             try:
@@ -280,6 +286,7 @@ def start_brick(
             )
     theirs.close()
     _running.add(popen.pid)
+    _brick_sessions.add(popen.pid)
     if memory_fd >= 0:
         channel = SharedChannel(ours, os.dup(memory_fd), simulator=True, spin_s=SPIN_S if spin else 0.0)
         os.close(memory_fd)

@@ -146,6 +146,8 @@ _SYSCALLS = """
     fspick                433     433
     mount_setattr         442     442
     unshare               272      97
+    setsid                112     157
+    setpgid               109     154
     setns                 308     268
     keyctl                250     219
     add_key               248     217

@@ -90,3 +90,45 @@ def test_sounds_and_frames_forged_through_the_link_cannot_choke_the_simulator_or
     from ev3sim2d.render.timeline import sound_spans
 
     assert len(sound_spans(result.trace)) <= 100 * 100
+
+
+SUBREAPER_SCRIPT = """
+import os, subprocess, sys, time
+sys.path.insert(0, os.getcwd())
+from pathlib import Path
+from ev3sim2d.brick_process import become_subreaper
+from ev3sim2d.run import run_programs
+from tests.inline_world import arena
+assert become_subreaper()
+mine = subprocess.Popen(["sleep", "60"])  # a child of this process's own: a browser, a test helper
+program = Path(sys.argv[1])
+program.write_text(
+    "import os, sys, time\\n"
+    "if os.fork() == 0:\\n"  # an orphan once the brick is gone (a real sleep, not the brick's clock)
+    "    os.execv(sys.executable, [sys.executable, '-c', 'import time; time.sleep(60)'])\\n"
+    "time.sleep(0.5)\\n"
+)
+result = run_programs([program], arena(), time_limit_s=5)
+time.sleep(0.2)
+children = [int(p) for p in os.listdir("/proc") if p.isdigit() and
+            open(f"/proc/{p}/stat").read().rsplit(")", 1)[1].split()[1] == str(os.getpid())]
+print(result.status, mine.poll() is None, sorted(set(children) - {mine.pid}))
+mine.kill()
+"""
+
+
+def test_a_subreaper_ends_a_bricks_orphans_and_leaves_its_own_children_alone(tmp_path):
+    """Orphans of a brick come back to the process that ran it (a subreaper), which kills them; a child it
+    started itself (the live page's browser, a test runner's helper) is not an orphan and lives on."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = tmp_path / "subreaper.py"
+    script.write_text(SUBREAPER_SCRIPT)
+    done = subprocess.run(
+        [sys.executable, "-P", str(script), str(tmp_path / "forks.py")],
+        capture_output=True, text=True, timeout=120, cwd=Path(__file__).resolve().parents[2],
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["finished", "True", "[]"], done.stdout
