@@ -184,14 +184,15 @@ def _is_subreaper() -> bool:
         return False
 
 
-def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
+def kill_orphans(keep: set[int] | frozenset = frozenset(), everything: bool = False) -> int:
     """As a subreaper: kill and reap every child process no one started on purpose (a brick's orphans).
 
     An orphan is a child of this process in a brick's session: a brick leads a session of its own,
     and its sandbox forbids setsid and setpgid, so nothing a program forks leaves it.  Children in
     `keep`, bricks still running, processes started before this process became a subreaper, and
     every child of another session (a browser the live page opened, a test runner's helpers) are
-    left alone."""
+    left alone.  everything: kill every child started since, whatever its session (the grader, whose
+    bricks run in its workers, and whose only children are those workers and the zygote)."""
     if not _is_subreaper() or _subreaper_since is None:
         return 0
     me = os.getpid()
@@ -212,7 +213,7 @@ def kill_orphans(keep: set[int] | frozenset = frozenset()) -> int:
         fields = stat[stat.rfind(")") + 2 :].split()
         if len(fields) < 20 or int(fields[1]) != me or int(entry) in mine:
             continue
-        if int(fields[3]) not in _brick_sessions:  # (fields: state, ppid, pgrp, session, ...)
+        if not everything and int(fields[3]) not in _brick_sessions:  # (state, ppid, pgrp, session, ...)
             continue
         if int(fields[19]) >= _subreaper_since:  # started since: a brick's, orphaned
             try:

@@ -297,7 +297,7 @@ def grade(
                         worker.kill("wall")
                     continue
                 running.remove(worker)
-                kill_orphans(keep={w.pid for w in running})
+                kill_orphans(keep={w.pid for w in running}, everything=True)
                 job = worker.job
                 outcome = collect(worker)
                 variant_result = variant_result_of(lesson, job.variant, outcome)
@@ -317,6 +317,6 @@ def grade(
             worker.reap()
         if zygote is not None:
             zygote.close()
-        kill_orphans()
+        kill_orphans(everything=True)
         shutil.rmtree(workdir, ignore_errors=True)
     return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started)
