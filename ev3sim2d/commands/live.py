@@ -14,24 +14,14 @@ from ..program import ProgramError
 from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_OK, fail
-from .run import RobotOptionError, robots_given
+from .run import RobotOptionError, add_programs_and_world, robots_given
 
 NAME = "live"
 HELP = "run programs live in the browser: pause, step, reload, drag the robot, edit the world, plot values"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("programs", nargs="+", metavar="PROG", help="python-ev3dev2 program file(s)")
-    parser.add_argument(
-        "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
-    )
-    parser.add_argument(
-        "--robot",
-        action="append",
-        default=[],
-        metavar="FILE",
-        help="robot file or shipped robot name: once for every robot, or once per program",
-    )
+    add_programs_and_world(parser)
     parser.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
     pace = parser.add_mutually_exclusive_group()
     pace.add_argument(

@@ -23,19 +23,29 @@ NAME = "run"
 HELP = "run a program (or several, one robot each) in a world"
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
+def add_programs_and_world(parser: argparse.ArgumentParser) -> None:
+    """PROG..., --maze and --robot, as `run` and `live` take them."""
     parser.add_argument("programs", nargs="+", metavar="PROG", help="python-ev3dev2 program file(s)")
     parser.add_argument(
         "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
     )
+    add_robot_option(parser, "program")
+
+
+def add_robot_option(parser: argparse.ArgumentParser, each: str) -> None:
+    """--robot: once for every robot, or once per program (`run`, `live`) or robot (`serve`)."""
     parser.add_argument(
         "--robot",
         action="append",
         default=[],
         metavar="FILE",
-        help="robot file or shipped robot name: once for every robot, or once per program in the programs' "
-        "order (default: the robot the start names, else the world's robot)",
+        help=f"robot file or shipped robot name: once for every robot, or once per {each} in order "
+        "(default: the robot the start names, else the world's robot)",
     )
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_programs_and_world(parser)
     parser.add_argument(
         "--time",
         type=float,

@@ -17,7 +17,7 @@ from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_INTERRUPTED, fail
 from .plot import matplotlib_missing
-from .run import RobotOptionError, _press, add_plot_arguments, report_end, robots_given
+from .run import RobotOptionError, _press, add_plot_arguments, add_robot_option, report_end, robots_given
 
 NAME = "serve"
 HELP = "hold a world for N robots whose programs join over the network (ev3sim2d join)"
@@ -37,16 +37,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"TCP port (default: {DEFAULT_PORT})")
     parser.add_argument("--token", help="the join token (default: a random one, when --host is not loopback)")
+    add_robot_option(parser, "robot")
     parser.add_argument(
-        "--robot",
-        action="append",
-        default=[],
-        metavar="FILE",
-        help="robot file or shipped robot name: once for every robot, or once per robot in order "
-        "(default: the robot the start names, else the world's robot)",
-    )
-    parser.add_argument(
-        "--time", type=float, default=60.0, metavar="S", help="stop after S seconds of simulated time (default: 60)"
+        "--time",
+        type=float,
+        default=60.0,
+        metavar="S",
+        help="stop after S seconds of simulated time (default: 60)",
     )
     parser.add_argument("--seed", type=int, default=0, help="seed for sensor noise and the programs' random")
     parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
@@ -55,7 +52,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_plot_arguments(parser)
     parser.add_argument("--quiet", action="store_true", help="do not show what the programs print")
     parser.add_argument(
-        "--press", action="append", default=[], type=_press, metavar="BUTTON@S", help="press a brick button at S s"
+        "--press",
+        action="append",
+        default=[],
+        type=_press,
+        metavar="BUTTON@S",
+        help="press a brick button at S s",
     )
     parser.add_argument(
         "--hang-after",
@@ -115,7 +117,9 @@ def main(args) -> int:
         names = [f"{g.fields['name']}: {g.fields['program']}" for g in guests]
     except KeyboardInterrupt:
         joined = sum(1 for g in lobby.guests if g.greeting is not None)
-        return fail(f"interrupted before the run: {joined} of {count} robot(s) had a program", EXIT_INTERRUPTED)
+        return fail(
+            f"interrupted before the run: {joined} of {count} robot(s) had a program", EXIT_INTERRUPTED
+        )
     except (ProgramError, StartBlocked) as err:
         return fail(str(err))
     finally:

@@ -134,6 +134,15 @@ class EditorHandler(BaseHTTPRequestHandler):
     def _error(self, status: int, message: str) -> None:
         self._json(status, {"error": message})
 
+    def _origin_ok(self) -> bool:
+        """A POST comes from our own page, not from another site's page in the same browser."""
+        origin = self.headers.get("Origin")
+        port = self.server.server_address[1]
+        if origin is not None and origin not in (f"http://127.0.0.1:{port}", f"http://localhost:{port}"):
+            self._error(HTTPStatus.FORBIDDEN, f"requests from {origin} are refused")
+            return False
+        return True
+
     def _host_ok(self) -> bool:
         """Only our own address (a web page elsewhere cannot reach us through DNS rebinding)."""
         port = self.server.server_address[1]
@@ -168,10 +177,7 @@ class EditorHandler(BaseHTTPRequestHandler):
                 HTTPStatus.NOT_FOUND, f"no such endpoint {self.path!r}; the editor saves with POST /api/save"
             )
             return
-        origin = self.headers.get("Origin")
-        port = self.server.server_address[1]
-        if origin is not None and origin not in (f"http://127.0.0.1:{port}", f"http://localhost:{port}"):
-            self._error(HTTPStatus.FORBIDDEN, f"requests from {origin} are refused")
+        if not self._origin_ok():
             return
         content_type = self.headers.get("Content-Type", "").split(";")[0].strip().lower()
         if content_type != "application/json":

@@ -22,6 +22,7 @@ from pathlib import Path
 
 from ..brick_port import BrickPort
 from ..brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
+from ..devices.motor import state_text
 from ..program import Program, ProgramError
 from ..run import await_hello, new_simulation, program_error, robot_names, robot_specs, run_result
 from ..session import Session
@@ -550,7 +551,7 @@ def _robot_state(index: int, robot, lcd_frame: int | None = None) -> dict:
         )
     motors = [
         {"port": port, "kind": motor.kind, "speed": motor.speed, "position": motor.position,
-         "state": _motor_state(motor)}
+         "state": state_text(motor.state_bits)}
         for port, motor in robot.motors.items()
     ]  # fmt: skip
     leds = {name: led.brightness for name, led in robot.brick.leds.items()}
@@ -566,12 +567,6 @@ def _robot_state(index: int, robot, lcd_frame: int | None = None) -> dict:
         "lcd_frame": lcd_frame,
         "body": {**robot.spec.body.__dict__, "color": list(robot.spec.color)},
     }
-
-
-def _motor_state(motor) -> str:
-    from ..devices.motor import state_text
-
-    return state_text(motor.state_bits)
 
 
 def _checked_speed(speed: float | None) -> float | None:

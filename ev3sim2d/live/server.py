@@ -295,10 +295,7 @@ class LiveHandler(EditorHandler):
                 f"no such endpoint {path!r}; the commands are {', '.join(sorted(COMMANDS))} (docs/live.md)",
             )
             return
-        origin = self.headers.get("Origin")
-        port = self.server.server_address[1]
-        if origin is not None and origin not in (f"http://127.0.0.1:{port}", f"http://localhost:{port}"):
-            self._error(HTTPStatus.FORBIDDEN, f"requests from {origin} are refused")
+        if not self._origin_ok():
             return
         data = self._body()
         if data is None:

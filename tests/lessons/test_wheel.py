@@ -3,7 +3,6 @@ variant (a lesson's hidden/ folder), no reference solution, no deliberately wron
 lessons it ships still load from its copy (with their visible variants only)."""
 
 import os
-import shutil
 import subprocess
 import sys
 import zipfile
@@ -11,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.installed.installed_venv import SOURCES  # what a wheel is built from
+from tests.installed import installed_venv
 
 ROOT = Path(__file__).resolve().parents[2]
 LESSONS = sorted(p.parent.name for p in (ROOT / "lessons").glob("*/lesson.yaml"))
@@ -19,26 +18,9 @@ LESSONS = sorted(p.parent.name for p in (ROOT / "lessons").glob("*/lesson.yaml")
 
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
-    """The wheel built by pip from a copy of the sources (an in-tree build would leave build/ behind)."""
-    root = tmp_path_factory.mktemp("wheel")
-    source = root / "source"
-    source.mkdir()
-    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info")
-    for name in SOURCES:
-        path = ROOT / name
-        if path.is_dir():
-            shutil.copytree(path, source / name, ignore=ignore)
-        else:
-            shutil.copy2(path, source / name)
-    built = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(root / "dist"), str(source)],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert built.returncode == 0, built.stdout + built.stderr
-    [path] = (root / "dist").glob("ev3sim2d-*.whl")
-    return path
+    """The wheel the installed-package tests use (.ci/run built it), else one built here the same way."""
+    found = installed_venv.from_environment()
+    return found.wheel if found else installed_venv.build_wheel(tmp_path_factory.mktemp("wheel"))
 
 
 @pytest.fixture(scope="module")
