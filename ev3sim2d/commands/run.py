@@ -46,6 +46,13 @@ def add_robot_option(parser: argparse.ArgumentParser, each: str) -> None:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_programs_and_world(parser)
+    add_run_options(
+        parser, "stop a program that spins S real seconds without using the robot or the clock (default: 5)"
+    )
+
+
+def add_run_options(parser: argparse.ArgumentParser, hang_help: str) -> None:
+    """The options of a run and its outputs, as `run` and `serve` take them."""
     parser.add_argument(
         "--time",
         type=float,
@@ -74,7 +81,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=5.0,
         metavar="S",
-        help="stop a program that spins S real seconds without using the robot or the clock (default: 5)",
+        help=hang_help,
     )
     add_picture_arguments(parser)
 

@@ -9,7 +9,6 @@ import sys
 from ..brick_process import become_subreaper
 from ..lobby import AddressInUse, Lobby, is_loopback
 from ..program import ProgramError
-from ..render.outputs import add_picture_arguments
 from ..run import echo_line
 from ..serve import serve_run
 from ..simulation import StartBlocked
@@ -17,7 +16,7 @@ from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_INTERRUPTED, fail
 from .plot import matplotlib_missing
-from .run import RobotOptionError, _press, add_plot_arguments, add_robot_option, report_end, robots_given
+from .run import RobotOptionError, add_robot_option, add_run_options, report_end, robots_given
 
 NAME = "serve"
 HELP = "hold a world for N robots whose programs join over the network (ev3sim2d join)"
@@ -38,35 +37,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"TCP port (default: {DEFAULT_PORT})")
     parser.add_argument("--token", help="the join token (default: a random one, when --host is not loopback)")
     add_robot_option(parser, "robot")
-    parser.add_argument(
-        "--time",
-        type=float,
-        default=60.0,
-        metavar="S",
-        help="stop after S seconds of simulated time (default: 60)",
+    add_run_options(
+        parser, "drop a brick that is silent S real seconds while the world waits for it (default: 5)"
     )
-    parser.add_argument("--seed", type=int, default=0, help="seed for sensor noise and the programs' random")
-    parser.add_argument("--png", metavar="FILE", help="write a picture of the end of the run")
-    parser.add_argument("--summary", metavar="FILE", help="write a JSON summary of the run")
-    parser.add_argument("--trace", metavar="FILE", help="write the full trace of the run (.npz)")
-    add_plot_arguments(parser)
-    parser.add_argument("--quiet", action="store_true", help="do not show what the programs print")
-    parser.add_argument(
-        "--press",
-        action="append",
-        default=[],
-        type=_press,
-        metavar="BUTTON@S",
-        help="press a brick button at S s",
-    )
-    parser.add_argument(
-        "--hang-after",
-        type=float,
-        default=5.0,
-        metavar="S",
-        help="drop a brick that is silent S real seconds while the world waits for it (default: 5)",
-    )
-    add_picture_arguments(parser)
 
 
 def _log(text: str) -> None:
