@@ -27,8 +27,8 @@ from pathlib import Path
 
 from old_code import old_code
 
-from ev3sim2d.run import run_programs
-from ev3sim2d.simulation import Simulation
+from ev3sim2d.simulator.run import run_programs
+from ev3sim2d.simulator.simulation import Simulation
 from ev3sim2d.world.maze_file import find_maze, load_maze
 
 ROOT = Path(__file__).resolve().parents[1]

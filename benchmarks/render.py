@@ -31,7 +31,7 @@ sys.path.insert(0, str(ROOT))
 
 from ev3sim2d.render.frame import FrameRenderer  # noqa: E402
 from ev3sim2d.render.video import X264_OPTIONS, VideoOptions, frame_times, write_video  # noqa: E402
-from ev3sim2d.run import run_programs  # noqa: E402
+from ev3sim2d.simulator.run import run_programs  # noqa: E402
 from ev3sim2d.world.maze_file import find_maze, load_maze  # noqa: E402
 
 MAZE_PROGRAM = textwrap.dedent(

@@ -17,7 +17,7 @@ sys.path.insert(0, str(HERE.parent))
 
 import ev3sim2d  # noqa: E402
 from ev3sim2d.render import plot as plot_module  # noqa: E402
-from ev3sim2d.series import RobotSeries  # noqa: E402
+from ev3sim2d.results.series import RobotSeries  # noqa: E402
 
 TARGET = HERE / "api.md"
 SECTIONS = [

@@ -11,7 +11,7 @@ __all__ = ["SimulationResult", "Table", "World", "load_maze", "simulate"]
 _WHERE = {
     "simulate": "ev3sim2d.simulate",
     "SimulationResult": "ev3sim2d.simulate",
-    "Table": "ev3sim2d.table",
+    "Table": "ev3sim2d.results.table",
     "World": "ev3sim2d.world.world",
     "load_maze": "ev3sim2d.world.maze_file",
 }

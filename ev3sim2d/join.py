@@ -2,7 +2,7 @@
 
 It connects to the world over TCP, says who it is (protocol/joining.py) and is
 given a robot; it then starts a brick process here, sandboxed as for `run`
-(brick_process.py), and passes the brick's messages on, both ways, unchanged,
+(simulator/bricks.py), and passes the brick's messages on, both ways, unchanged,
 showing the program's printed lines as they come.  It ends when the world says
 the run is over, or when the world goes away.  The world trusts nothing it
 says: everything arriving over the connection is checked there as a brick's
@@ -17,10 +17,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from .brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
-from .program import Program
 from .protocol import Channel, ConnectionGone, ProtocolError, wait_for_any
 from .protocol.joining import JoinRefused, check_seat, join_message
+from .simulator.bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
+from .simulator.program import Program
 
 CONNECT_TIMEOUT_S = 10.0
 SEAT_TIMEOUT_S = 30.0

@@ -16,11 +16,11 @@ import gc
 import socket
 from collections.abc import Sequence
 
-from .brick_port import BrickPort
-from .brick_process import BrickLimits
-from .lobby import Guest, Lobby, send_timeout
 from .protocol import ProtocolError
-from .run import RunResult, new_simulation, play, robot_names, run_result, take_hello
+from .simulator.brick_port import BrickPort
+from .simulator.bricks import BrickLimits
+from .simulator.lobby import Guest, Lobby, send_timeout
+from .simulator.run import RunResult, new_simulation, play, robot_names, run_result, take_hello
 from .world.robot_spec import RobotSpec
 from .world.world import World
 

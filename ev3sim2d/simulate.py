@@ -23,11 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .program import ProgramError, source_with_caret
-from .run import RunResult, run_programs
-from .series import RobotSeries, robot_series
-from .table import Table
-from .trace import OutputLine, Trace
+from .results.series import RobotSeries, robot_series
+from .results.table import Table
+from .results.trace import OutputLine, Trace
+from .simulator.program import ProgramError, source_with_caret
+from .simulator.run import RunResult, run_programs
 from .world.maze_file import find_maze, load_maze
 from .world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from .world.world import World

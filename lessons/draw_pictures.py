@@ -11,7 +11,7 @@ from pathlib import Path
 
 from ev3sim2d.grading.lesson import list_shipped_lessons, load_lesson
 from ev3sim2d.render import frame
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 
 
 def draw(lesson_id: str) -> list[Path]:

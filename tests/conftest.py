@@ -4,7 +4,7 @@ import textwrap
 
 import pytest
 
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from tests.inline_world import arena
 
 

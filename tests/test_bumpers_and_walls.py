@@ -14,8 +14,8 @@ import math
 
 import pytest
 
-from ev3sim2d.physics import WALL_FRICTION
-from ev3sim2d.simulation import Simulation
+from ev3sim2d.simulator.physics import WALL_FRICTION
+from ev3sim2d.simulator.simulation import Simulation
 from ev3sim2d.world.robot_spec import parse_robot
 from tests.inline_world import arena, two_wheel_robot
 

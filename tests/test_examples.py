@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.button_press import parse_press
 from ev3sim2d.world.maze_file import find_maze, load_maze
 from ev3sim2d.world.robot_spec import load_robot

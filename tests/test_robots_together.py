@@ -14,7 +14,7 @@ import textwrap
 
 import pytest
 
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.robot_spec import load_robot
 from tests.inline_world import arena, two_wheel_robot
 

@@ -232,7 +232,7 @@ def test_odometry_thread_runs_in_virtual_time(run):
 
 
 def test_two_programs_drive_two_robots_that_see_each_other(tmp_path):
-    from ev3sim2d.run import run_programs
+    from ev3sim2d.simulator.run import run_programs
 
     world = arena(
         start="- {x_cm: 40, y_cm: 120, heading_deg: 0}\n  - {x_cm: 140, y_cm: 120, heading_deg: 180}"

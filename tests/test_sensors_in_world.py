@@ -1,6 +1,6 @@
 """Sensors read the world: colour under the spot, distance ahead, bumper, noise."""
 
-from ev3sim2d.simulation import Simulation
+from ev3sim2d.simulator.simulation import Simulation
 from tests.inline_world import arena, two_wheel_robot
 
 # a 12 cm grid with one black column (col 5: x 60..72) on white floor

@@ -13,8 +13,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ev3sim2d.run import robot_specs, run_programs
-from ev3sim2d.trace import Trace
+from ev3sim2d.results.trace import Trace
+from ev3sim2d.simulator.run import robot_specs, run_programs
 from ev3sim2d.world.maze_file import find_maze, list_shipped_mazes, load_maze, parse_maze
 from ev3sim2d.world.robot_spec import default_robot, load_robot, shipped_robots_dir
 from ev3sim2d.world.source_error import WorldFileError

@@ -2,7 +2,7 @@
 
 import pytest
 
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.maze_file import find_maze, list_shipped_mazes, load_maze
 
 WANDER = """

@@ -95,7 +95,7 @@ class Zygote:
             self._kill(pid)
 
     def _become_brick(self, conn: int, memory_fd: int, console: int, reply: int, scratch: str, cpus) -> None:
-        """In the child: look like a fresh brick (see brick_process.start_brick), then be one."""
+        """In the child: look like a fresh brick (see simulator/bricks.py, start_brick), then be one."""
         code = 70
         try:
             signal.set_wakeup_fd(-1)

@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..brick_process import become_subreaper
 from ..join import JoinError, parse_address, run_joined
-from ..program import ProgramError
+from ..simulator.bricks import become_subreaper
+from ..simulator.program import ProgramError
 from .exit_codes import EXIT_INTERRUPTED, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 from .run import STATUS_CODES
 

@@ -7,10 +7,10 @@ import threading
 import webbrowser
 from pathlib import Path
 
-from ..brick_process import become_subreaper
 from ..live.engine import MAX_SPEED, MIN_SPEED, LiveError, LiveRun
 from ..live.server import LiveServer, LiveWorldFile
-from ..program import ProgramError
+from ..simulator.bricks import become_subreaper
+from ..simulator.program import ProgramError
 from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_OK, fail

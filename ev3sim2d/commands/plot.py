@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from ..trace import Trace
+from ..results.trace import Trace
 from .exit_codes import EXIT_OK, fail
 
 NAME = "plot"

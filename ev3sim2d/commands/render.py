@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 
 from ..render.outputs import add_picture_arguments, write_pictures
-from ..trace import Trace
+from ..results.trace import Trace
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_OK, fail
 

@@ -6,12 +6,12 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..brick_process import become_subreaper
-from ..program import ProgramError
 from ..render.outputs import add_picture_arguments, write_pictures
-from ..run import RunResult, echo_line, run_programs
-from ..simulation import StartBlocked
-from ..summary import run_summary, write_summary
+from ..results.summary import run_summary, write_summary
+from ..simulator.bricks import become_subreaper
+from ..simulator.program import ProgramError
+from ..simulator.run import RunResult, echo_line, run_programs
+from ..simulator.simulation import StartBlocked
 from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names

@@ -6,12 +6,12 @@ import argparse
 import secrets
 import sys
 
-from ..brick_process import become_subreaper
-from ..lobby import AddressInUse, Lobby, is_loopback
-from ..program import ProgramError
-from ..run import echo_line
 from ..serve import serve_run
-from ..simulation import StartBlocked
+from ..simulator.bricks import become_subreaper
+from ..simulator.lobby import AddressInUse, Lobby, is_loopback
+from ..simulator.program import ProgramError
+from ..simulator.run import echo_line
+from ..simulator.simulation import StartBlocked
 from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_INTERRUPTED, fail

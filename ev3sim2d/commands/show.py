@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..simulation import Simulation, StartBlocked
+from ..simulator.simulation import Simulation, StartBlocked
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import load_robot
 from ..world.source_error import WorldFileError

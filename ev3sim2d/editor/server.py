@@ -19,10 +19,10 @@ from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 
+from ..world.maze_writer import write_maze_text
 from ..world.source_error import WorldFileError
+from ..world.world_json import BadEdit, MazeSource, edited_from_json
 from ..world.yaml_source import read_text_file
-from .maze_writer import write_maze_text
-from .world_json import BadEdit, MazeSource, edited_from_json
 
 STATIC_DIR = Path(__file__).with_name("static")
 STATIC_FILES = {
@@ -66,13 +66,11 @@ class WorldFile:
 
 def _check_reflects(source: MazeSource, edited) -> None:
     """The text read back is the edited world (a mismatch is our bug, so it stays loud)."""
-    world = source.world
-    cells = [
-        [world.grid.cell(col, row) for col in range(world.grid.width)] for row in range(world.grid.height)
-    ]
-    same_starts = len(world.starts) == len(edited.starts) and all(
+    grid = source.grid
+    cells = [[grid.cell(col, row) for col in range(grid.width)] for row in range(grid.height)]
+    same_starts = len(source.starts) == len(edited.starts) and all(
         math.isclose(a, b, abs_tol=1e-5)
-        for got, want in zip(world.starts, edited.starts, strict=True)
+        for got, want in zip(source.starts, edited.starts, strict=True)
         for a, b in zip(got.as_dict().values(), want.as_dict().values(), strict=True)
     )
     if cells != [[item.cell for item in row] for row in edited.cells] or not same_starts:

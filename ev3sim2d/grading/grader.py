@@ -26,7 +26,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..brick_process import become_subreaper, compile_brick_code, kill_orphans
+from ..simulator.bricks import become_subreaper, compile_brick_code, kill_orphans
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -93,11 +93,11 @@ def _wait_for_one(pids: list[int], timeout_s: float) -> None:
 
 
 def _start_zygote():
-    """The class run's brick zygote (brick_zygote.py), or None where there can be none: each brick is
+    """The class run's brick zygote (simulator/zygote.py), or None where there can be none: each brick is
     then started afresh."""
     if not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"):
         return None
-    from ..brick_zygote import BrickZygote
+    from ..simulator.zygote import BrickZygote
 
     try:
         return BrickZygote()
@@ -180,7 +180,7 @@ def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
 def _cannot_start(submission: Submission) -> str | None:
     """Why the submission's program cannot be started in any variant (a syntax error, with its line and a
     caret), or None.  The program is only read and compiled here, never run."""
-    from ..program import Program, ProgramError
+    from ..simulator.program import Program, ProgramError
 
     try:
         Program(submission.entry)

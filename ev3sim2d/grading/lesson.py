@@ -22,7 +22,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..simulation import Simulation, StartBlocked
+from ..simulator.simulation import Simulation, StartBlocked
 from ..world.source_error import WorldFileError
 from ..world.yaml_source import Fields, Node, load_yaml_text, read_text_file
 from .check import COMMON_KEYS, Check, builtin_checks, checks_from_node

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..trace import POSE_COLUMNS, Trace
+from ..results.trace import POSE_COLUMNS, Trace
 from ..world.world import World
 
 MOVING_CM = 1e-3  # a pose change below this between ticks is standing still

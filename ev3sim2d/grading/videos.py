@@ -15,7 +15,7 @@ import shutil
 from collections.abc import Callable
 from pathlib import Path
 
-from ..trace import Trace
+from ..results.trace import Trace
 
 VIDEO_MODULE = "ev3sim2d.render.video"
 VIDEO_FUNCTIONS = ("write_video", "write_mp4")

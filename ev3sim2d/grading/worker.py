@@ -34,7 +34,7 @@ import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from ..brick_process import become_subreaper, console_tail, kill_orphans
+from ..simulator.bricks import become_subreaper, console_tail, kill_orphans
 from .result import VariantResult, printed_output
 
 RESULT_FILE = "result.json"
@@ -187,9 +187,9 @@ def run_job(job: Job, lesson, zygote=None) -> None:
 
 
 def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
-    from ..brick_process import BrickLimits
-    from ..program import ProgramError
-    from ..run import run_programs
+    from ..simulator.bricks import BrickLimits
+    from ..simulator.program import ProgramError
+    from ..simulator.run import run_programs
     from .run_record import RunRecord
     from .scoring import score_run
 

@@ -20,13 +20,13 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from ..brick_port import BrickPort
-from ..brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
 from ..devices.motor import state_text
-from ..program import Program, ProgramError
-from ..run import await_hello, new_simulation, program_error, robot_names, robot_specs, run_result
-from ..session import Session
-from ..trace import Trace
+from ..results.trace import Trace
+from ..simulator.brick_port import BrickPort
+from ..simulator.bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
+from ..simulator.program import Program, ProgramError
+from ..simulator.run import await_hello, new_simulation, program_error, robot_names, robot_specs, run_result
+from ..simulator.session import Session
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from ..world.pose import Pose

@@ -27,10 +27,10 @@ from urllib.parse import parse_qs
 from ..devices import registry
 from ..editor.server import STATIC_DIR as EDITOR_STATIC_DIR
 from ..editor.server import EditorHandler, WorldFile
-from ..editor.world_json import BadEdit, MazeSource
 from ..world.cell import Cell
 from ..world.robot_spec import SENSOR_PORTS, robot_yaml
 from ..world.source_error import WorldFileError
+from ..world.world_json import BadEdit, MazeSource
 from .engine import LiveError, LiveRun
 
 STATIC_DIR = Path(__file__).with_name("static")

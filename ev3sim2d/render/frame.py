@@ -14,12 +14,11 @@ from pathlib import Path
 import cv2
 import numpy as np
 
-from ..trace import Trace
+from ..results.trace import Trace
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from . import palette
-from .layout import FrameLayout
-from .outputs import DEFAULT_SIZE  # (the picture options' module, which imports no renderer)
+from .layout import DEFAULT_SIZE, FrameLayout
 from .panel import Panel
 from .robot_layer import (
     TRAIL_RECENT_S,

@@ -6,6 +6,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+DEFAULT_SIZE = (1280, 720)
+"""A frame's width and height in px, unless a caller (--size) says otherwise."""
+
 SHIFT = 4
 """OpenCV draws with coordinates in 1/16 px (shift=4), so that slow motion moves smoothly."""
 ONE = 1 << SHIFT

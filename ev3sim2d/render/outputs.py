@@ -8,9 +8,8 @@ from __future__ import annotations
 import argparse
 import re
 
-from ..trace import Trace
-
-DEFAULT_SIZE = (1280, 720)  # (render/frame.py's default too)
+from ..results.trace import Trace
+from .layout import DEFAULT_SIZE
 
 MAX_FPS = 120.0
 

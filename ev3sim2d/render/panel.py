@@ -15,7 +15,7 @@ import cv2
 import numpy as np
 
 from ..devices.motor import STATE_NAMES
-from ..trace import Trace
+from ..results.trace import Trace
 from ..world.colors import COLOR_NAMES_BY_ID, EV3_COLORS
 from . import palette
 from .layout import FrameLayout

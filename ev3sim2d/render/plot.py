@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from ..devices.registry import sensor_class
-from ..series import RobotSeries, held_readings, robot_series
-from ..trace import Trace
+from ..results.series import RobotSeries, held_readings, robot_series
+from ..results.trace import Trace
 
 INSTALL_HINT = "plotting needs matplotlib: pip install 'ev3sim2d[plot]' (or pip install matplotlib)"
 DPI = 100  # pixels per inch of the PNG: a size in pixels is the figure's inches times this

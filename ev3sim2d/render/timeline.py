@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..trace import MOTOR_COLUMNS, POSE_COLUMNS, OutputLine, Trace
+from ..results.trace import MOTOR_COLUMNS, POSE_COLUMNS, OutputLine, Trace
 
 _EPS_S = 1e-9  # frame times are sums of floats: t = 0.1 must find the tick that ended at 0.1
 

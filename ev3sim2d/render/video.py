@@ -23,9 +23,10 @@ import av
 import cv2
 import numpy as np
 
-from ..trace import Trace
+from ..results.trace import Trace
 from .audio import SAMPLE_RATE, sound_track
-from .frame import DEFAULT_SIZE, FrameRenderer, save_png
+from .frame import FrameRenderer, save_png
+from .layout import DEFAULT_SIZE
 from .progress import Progress
 
 # x264: the ultrafast preset, given back the three tools that matter for these pictures (flat colours,

@@ -1,57 +1,26 @@
 """Maze files (YAML) in, World out; and finding the mazes that ship with ev3sim2d.
 
-The format is described, with a full example, in docs/world-files.md.  Every
-mistake a user can make in a maze file raises WorldFileError naming the file,
-the line (and column) and what to write instead.
+The format is described, with a full example, in docs/world-files.md; maze_reader.py reads it and
+says where a file is wrong.
 """
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from pathlib import Path
 
-from .button_press import parse_press
 from .cell import Cell
 from .grid import Grid
-from .grid_text import TextRow, first_non_wall_border_cell, read_text_grid, text_rows
-from .legend import DEFAULT_LEGEND, Legend, LegendEntry, as_entry, as_legend, legend_from_node
+from .grid_text import read_text_grid, text_rows
+from .legend import Legend, LegendEntry, as_legend
+from .maze_reader import DEFAULT_CELL_CM, middle_floor_cell, read_maze
 from .pose import Pose
-from .rectangles import Rect, merge_cells, spans_to_rects
+from .rectangles import merge_cells, spans_to_rects
 from .region import Region
-from .robot_spec import (
-    RobotSpec,
-    default_robot,
-    find_robot,
-    load_robot,
-    robot_from_mapping,
-    shipped_robot_names,
-)
+from .robot_spec import RobotSpec, default_robot
 from .source_error import WorldFileError
-from .world import DEFAULT_AMBIENT, World
-from .yaml_source import Fields, Node, load_yaml_text, read_text_file
-
-MAZE_KEYS = (
-    "title",
-    "description",
-    "cell_cm",
-    "legend",
-    "grid",
-    "start",
-    "regions",
-    "robot",
-    "ambient",
-    "buttons",
-)
-DEFAULT_CELL_CM = 10.0
-MIN_CELLS = 3
-
-_GRID_HELP = (
-    "write `grid: |` and below it one line of cells per row, top row first (or a list of quoted strings)"
-)
-_START_EXAMPLE = "start: {cell: [1, 1], heading_deg: 0}"
-_START_KEYS = ("cell", "x_cm", "y_cm", "heading_deg", "robot")
-
+from .world import World
+from .yaml_source import Fields, load_yaml_text, read_text_file
 
 # -- reading ----------------------------------------------------------------------------
 
@@ -60,57 +29,9 @@ def load_maze(path: str | Path) -> World:
     """Read a maze file."""
     return parse_maze(read_text_file(path), str(path))
 
-
 def parse_maze(text: str, path: str = "<string>") -> World:
     """Read a maze from YAML text; `path` names it in errors and resolves a relative `robot:` file."""
-    root = load_yaml_text(text, path)
-    if not root.is_mapping:
-        raise root.error(f"a maze file is a mapping of keys like `title: My maze`, got {root.describe()}")
-    fields = Fields(root, "the maze file", MAZE_KEYS)
-    name = _name_from_path(path)
-    title = fields.text("title", default=name, example="title: My maze")
-    description = fields.text("description", default=None, example="description: Drive to the green square.")
-    if description is None:
-        description = header_comment(text)
-    cell_cm = fields.number("cell_cm", default=DEFAULT_CELL_CM, unit="cm", example="cell_cm: 10")
-    if cell_cm <= 0:
-        raise fields.get("cell_cm").error(
-            f"'cell_cm' must be more than 0 cm, got {cell_cm:g}; write e.g. `cell_cm: 10`"
-        )
-    legend = legend_from_node(fields.get("legend")) if "legend" in fields else DEFAULT_LEGEND
-    grid_node = fields.require("grid", "grid: |")
-    rows = _grid_rows(grid_node, text)
-    cells = read_text_grid(rows, legend, path)
-    grid = Grid(cells.rows, cell_cm, legend, text="\n".join(row.text for row in rows))
-    _check_size_and_border(grid_node, rows, grid)
-    starts, start_robots = _starts(fields.require("start", _START_EXAMPLE), grid, path)
-    regions = _regions(fields.get("regions"), cells.region_cells, grid)
-    robot = _robot(fields.get("robot"), path)
-    ambient = fields.number("ambient", default=DEFAULT_AMBIENT, unit="0..100", example="ambient: 10")
-    if not 0 <= ambient <= 100:
-        raise fields.get("ambient").error(f"'ambient' is a light level from 0 to 100, got {ambient:g}")
-    buttons = []
-    for node in (
-        fields.get("buttons").as_list("buttons", "buttons: [enter@2.0]") if "buttons" in fields else []
-    ):
-        try:
-            buttons.append(parse_press(node.as_text("buttons", "buttons: [enter@2.0]")))
-        except ValueError as err:
-            raise node.error(str(err)) from None
-    return World(
-        name=name,
-        title=title,
-        description=description,
-        grid=grid,
-        starts=starts,
-        regions=regions,
-        robot=robot,
-        source=None if path.startswith("<") else path,
-        text=text,
-        ambient=ambient,
-        buttons=buttons,
-        start_robots=start_robots,
-    )
+    return World(**read_maze(text, path))
 
 
 def maze_from_text_grid(
@@ -133,254 +54,13 @@ def maze_from_text_grid(
     if isinstance(start, Pose):
         pose = start
     else:
-        col, row = start if start is not None else _middle_floor_cell(grid)
+        col, row = start if start is not None else middle_floor_cell(grid)
         pose = Pose(*grid.cell_center(col, row), 0.0)
     regions = {
         region: Region(region, tuple(spans_to_rects(merge_cells(spots), cell_cm)))
         for region, spots in cells.region_cells.items()
     }
     return World(name, name, "", grid, [pose], regions, robot or default_robot())
-
-
-def _middle_floor_cell(grid: Grid) -> tuple[int, int]:
-    """The floor cell nearest the middle of the grid."""
-    mid_col, mid_row = (grid.width - 1) / 2, (grid.height - 1) / 2
-    floor = [(col, row) for col, row, cell in grid.cells() if not cell.wall]
-    if not floor:
-        raise ValueError("the grid has no floor cell to start on")
-    return min(floor, key=lambda cr: ((cr[0] - mid_col) ** 2 + (cr[1] - mid_row) ** 2, cr))
-
-
-def header_comment(text: str) -> str:
-    """The comment lines at the top of a file, without their '#', as the world's description."""
-    lines: list[str] = []
-    for line in text.splitlines():
-        stripped = line.strip()
-        if not stripped.startswith("#"):
-            break
-        lines.append(stripped.lstrip("#").strip())
-    return " ".join(lines).strip()
-
-
-def _name_from_path(path: str) -> str:
-    return "untitled" if path.startswith("<") else Path(path).stem
-
-
-def _grid_rows(node: Node, text: str) -> list[TextRow]:
-    """The grid's rows with their file positions, from a `|` block or a list of strings."""
-    if node.is_sequence:
-        rows = []
-        for item in node.as_list("grid"):
-            row = item.as_text("grid", '- "#####"')
-            quoted = item.style in ("'", '"')
-            rows.append(TextRow(row.rstrip(), item.line, item.column + (1 if quoted else 0)))
-        return rows
-    if node.is_scalar and node.style == "|":
-        source_lines = text.split("\n")
-        value_lines = node.raw.value.split("\n")
-        first_line = node.line + 1  # a literal block starts on the line after `|`
-        indent = _block_indent(source_lines, node.line, value_lines)
-        rows = [TextRow(value.rstrip(), first_line + i, indent + 1) for i, value in enumerate(value_lines)]
-        while rows and not rows[0].text:
-            rows.pop(0)
-        while rows and not rows[-1].text:
-            rows.pop()
-        for row in rows:
-            if not row.text:
-                raise WorldFileError(node.path, row.line, None, "an empty line inside the grid; remove it")
-        return rows
-    if node.is_null:
-        raise node.error(f"'grid' is empty (a '#' right after `grid:` starts a YAML comment); {_GRID_HELP}")
-    raise node.error(f"'grid' must be rows of cell characters; {_GRID_HELP}")
-
-
-def _block_indent(source_lines: list[str], block_line: int, value_lines: list[str]) -> int:
-    """How far the block's rows are indented in the file (0-based count of spaces)."""
-    for i, value in enumerate(value_lines):
-        if value.strip():
-            index = block_line + i  # 0-based index of the file line holding value line i
-            if index < len(source_lines):
-                source = source_lines[index].rstrip("\r")
-                if source.endswith(value):
-                    return len(source) - len(value)
-            break
-    return 0
-
-
-def _check_size_and_border(node: Node, rows: list[TextRow], grid: Grid) -> None:
-    if grid.width < MIN_CELLS or grid.height < MIN_CELLS:
-        raise node.error(
-            f"the grid is {grid.width}x{grid.height} cells; a world needs at least {MIN_CELLS}x{MIN_CELLS} "
-            "(a wall all round and floor inside)",
-            column=False,
-        )
-    cells = [[grid.cell(col, row) for col in range(grid.width)] for row in range(grid.height)]
-    found = first_non_wall_border_cell(rows, cells)
-    if found is not None:
-        row, index = found
-        raise WorldFileError(
-            node.path,
-            row.line,
-            row.column_of(index),
-            f"border cell '{row.text[index]}' is not a wall; border cells must be walls so the robot cannot "
-            "leave the world; write '#' or another wall character",
-        )
-
-
-# -- starts --------------------------------------------------------------------------------
-
-
-def _starts(node: Node, grid: Grid, path: str) -> tuple[list[Pose], list[RobotSpec | None]]:
-    """The start poses, and per start the robot it names (None: the world's robot)."""
-    items = node.as_list("start", _START_EXAMPLE) if node.is_sequence else [node]
-    if not items:
-        raise node.error(f"'start' needs at least one pose; write e.g. `{_START_EXAMPLE}`")
-    poses = [_start(item, grid) for item in items]
-    robots = [_start_robot(item, path) for item in items]
-    return poses, robots
-
-
-def _start_robot(node: Node, path: str) -> RobotSpec | None:
-    """The robot a start names with `robot: FILE` (found as the world's `robot:` is), or None."""
-    fields = node.as_fields("start", _START_KEYS, _START_EXAMPLE)
-    return _robot(fields.get("robot"), path) if "robot" in fields else None
-
-
-def _start(node: Node, grid: Grid) -> Pose:
-    if not node.is_mapping:
-        raise node.error(f"a start is a mapping like `{_START_EXAMPLE}`, got {node.describe()}")
-    fields = node.as_fields("start", _START_KEYS, _START_EXAMPLE)
-    heading = fields.number(
-        "heading_deg", default=0.0, unit="degrees, 0 = +x, counter-clockwise", example="heading_deg: 90"
-    )
-    by_cell = "cell" in fields
-    by_cm = "x_cm" in fields or "y_cm" in fields
-    if by_cell and by_cm:
-        raise node.error(
-            "give the start either as `cell: [col, row]` or as `x_cm` and `y_cm`, not both", column=False
-        )
-    if not by_cell and not by_cm:
-        raise node.error(
-            "a start needs a position: `cell: [col, row]` (from the bottom-left, both from 0) or `x_cm` and `y_cm`",
-            column=False,
-        )
-    if by_cell:
-        cell_node = fields.get("cell")
-        col, row = _cell_pair(cell_node, "cell", "cell: [1, 1]")
-        if not grid.contains(col, row):
-            raise cell_node.error(f"start cell [{col}, {row}] is outside the grid; {_grid_extent(grid)}")
-        if grid.is_wall(col, row):
-            raise cell_node.error(f"start cell [{col}, {row}] is a wall; start the robot on a floor cell")
-        x, y = grid.cell_center(col, row)
-        return Pose(x, y, heading)
-    x = fields.number("x_cm", unit="cm", example="x_cm: 35")
-    y = fields.number("y_cm", unit="cm", example="y_cm: 55")
-    index = grid.cell_index_at(x, y)
-    if index is None:
-        width, height = grid.size_cm
-        raise node.error(
-            f"start x_cm {x:g}, y_cm {y:g} is outside the grid (0..{width:g} x 0..{height:g} cm)",
-            column=False,
-        )
-    if grid.is_wall(*index):
-        raise node.error(
-            f"start x_cm {x:g}, y_cm {y:g} is inside the wall cell [{index[0]}, {index[1]}]; "
-            "start the robot on a floor cell",
-            column=False,
-        )
-    return Pose(x, y, heading)
-
-
-def _cell_pair(node: Node, name: str, example: str) -> tuple[int, int]:
-    items = node.as_list(name, example)
-    if len(items) != 2:
-        raise node.error(f"'{name}' must be [col, row], two whole numbers; write e.g. `{example}`")
-    return items[0].as_int(name, example), items[1].as_int(name, example)
-
-
-def _grid_extent(grid: Grid) -> str:
-    return f"columns are 0..{grid.width - 1} and rows 0..{grid.height - 1}, counted from the bottom-left"
-
-
-# -- regions ----------------------------------------------------------------------------------
-
-
-def _regions(
-    node: Node | None, legend_cells: dict[str, list[tuple[int, int]]], grid: Grid
-) -> dict[str, Region]:
-    written = (
-        node.as_fields("regions", None, "regions: {goal: {cells: [[1, 1]]}}") if node is not None else None
-    )
-    regions: dict[str, Region] = {}
-    names = list(written or []) + [name for name in legend_cells if written is None or name not in written]
-    for name in names:
-        spots = list(legend_cells.get(name, []))
-        rects: list[Rect] = []
-        if written is not None and name in written:
-            _read_region(written.get(name), name, grid, spots, rects)
-        spans = merge_cells(spots)
-        regions[name] = Region(name, tuple(spans_to_rects(spans, grid.cell_cm)) + tuple(rects))
-    return regions
-
-
-def _read_region(node: Node, name: str, grid: Grid, spots: list[tuple[int, int]], rects: list[Rect]) -> None:
-    example = "{cells: [[1, 1], [2, 1]]} or {rect_cm: [10, 10, 40, 30]}"
-    fields = node.as_fields(name, ("cells", "rect_cm", "rects_cm"), f"{name}: {example}")
-    if len(fields) == 0:
-        raise node.error(
-            f"region '{name}' needs `cells` or `rect_cm`; write e.g. `{name}: {example}`", column=False
-        )
-    if "cells" in fields:
-        for item in fields.get("cells").as_list("cells", "cells: [[1, 1], [2, 1]]"):
-            col, row = _cell_pair(item, "cells", "cells: [[1, 1], [2, 1]]")
-            if not grid.contains(col, row):
-                raise item.error(
-                    f"region '{name}' cell [{col}, {row}] is outside the grid; {_grid_extent(grid)}"
-                )
-            spots.append((col, row))
-    rect_nodes = [fields.get("rect_cm")] if "rect_cm" in fields else []
-    if "rects_cm" in fields:
-        rect_nodes += fields.get("rects_cm").as_list(
-            "rects_cm", "rects_cm: [[0, 0, 20, 20], [40, 0, 60, 20]]"
-        )
-    for rect_node in rect_nodes:
-        rects.append(_rect(rect_node, name, grid))
-
-
-def _rect(node: Node, name: str, grid: Grid) -> Rect:
-    x0, y0, x1, y1 = node.as_numbers("rect_cm", 4, "cm", "rect_cm: [10, 10, 40, 30]")
-    if not (x0 < x1 and y0 < y1):
-        raise node.error(f"region '{name}' rectangle must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1 (cm)")
-    width, height = grid.size_cm
-    if x0 < 0 or y0 < 0 or x1 > width or y1 > height:
-        raise node.error(
-            f"region '{name}' rectangle reaches outside the grid (0..{width:g} x 0..{height:g} cm)"
-        )
-    return (x0, y0, x1, y1)
-
-
-# -- robot ----------------------------------------------------------------------------------
-
-
-def _robot(node: Node | None, path: str) -> RobotSpec:
-    if node is None:
-        return default_robot()
-    if node.is_mapping:
-        return robot_from_mapping(node, source=None if path.startswith("<") else path)
-    if node.is_scalar and not node.is_null:
-        base_dir = None if path.startswith("<") else Path(path).parent
-        found = find_robot(node.text, base_dir)
-        if found is None:
-            shipped = ", ".join(shipped_robot_names())
-            raise node.error(
-                f"no robot file {node.describe()} (looked next to the maze file, in the current folder, "
-                f"and among the shipped robots: {shipped}); check the name or write the robot inline"
-            )
-        return load_robot(found)
-    raise node.error(
-        f"'robot' must be a robot file name or a mapping describing the robot, got {node.describe()}"
-    )
-
 
 # -- shipped mazes ----------------------------------------------------------------------------
 
@@ -419,61 +99,4 @@ def find_maze(name_or_path: str | Path) -> Path:
         None,
         None,
         f"no maze file or shipped maze by this name; shipped mazes: {names}; or give the path of a .yaml file",
-    )
-
-
-# -- writing a new maze file --------------------------------------------------------------------
-
-
-def new_maze_text(
-    grid_text: str,
-    *,
-    cell_cm: float,
-    starts: list[Pose | tuple],
-    legend: Mapping[str, LegendEntry | Cell | str] | None = None,
-    title: str = "",
-    description: str = "",
-    robot: str | None = None,
-) -> str:
-    """The YAML of a new maze file: a text grid (top row first), starts as Poses, (col, row) or
-    (col, row, heading_deg) cells, legend entries beyond the default ones, and a robot file's name."""
-    lines = [f"title: {json.dumps(title)}"] if title else []
-    if description:
-        lines.append(f"description: {json.dumps(description)}")
-    lines.append(f"cell_cm: {cell_cm:g}")
-    if legend:
-        lines.append("legend:")
-        for char, value in legend.items():
-            lines.append(f"  {json.dumps(char)}: {json.dumps(_entry_mapping(as_entry(value)))}")
-    lines.append("grid: |")
-    lines += [f"  {row.text}" for row in text_rows(grid_text)]
-    lines.append("start:")
-    for start in starts:
-        fields = ", ".join(f"{key}: {json.dumps(value)}" for key, value in _start_mapping(start).items())
-        lines.append(f"  - {{{fields}}}")
-    if robot:
-        lines.append(f"robot: {json.dumps(robot)}")
-    return "\n".join(lines) + "\n"
-
-
-def _entry_mapping(entry: LegendEntry) -> dict:
-    cell = entry.cell
-    mapping: dict = {"wall": True} if cell.wall else {}
-    if cell.color is not None:
-        mapping["color"] = cell.color
-    if cell.shade is not None:
-        mapping["shade"] = cell.shade
-    if entry.region is not None:
-        mapping["region"] = entry.region
-    return mapping
-
-
-def _start_mapping(start: Pose | tuple) -> dict:
-    if isinstance(start, Pose):
-        return {"x_cm": start.x_cm, "y_cm": start.y_cm, "heading_deg": start.heading_deg}
-    if isinstance(start, tuple | list) and len(start) in (2, 3):
-        heading = start[2] if len(start) == 3 else 0
-        return {"cell": [int(start[0]), int(start[1])], "heading_deg": heading}
-    raise ValueError(
-        f"a start is a Pose(x_cm, y_cm, heading_deg), a (col, row) cell or (col, row, heading_deg), got {start!r}"
     )

@@ -10,13 +10,13 @@ from .button_press import ButtonPress
 from .cell import Cell
 from .grid import Grid
 from .legend import LegendEntry, cell_from_words
+from .maze_reader import DEFAULT_AMBIENT, middle_floor_cell, read_maze
+from .maze_writer import new_maze_text, write_maze_text
 from .pose import Pose
 from .rectangles import Rect, merge_cells, spans_to_rects
 from .region import Region
 from .robot_spec import RobotSpec
-
-DEFAULT_AMBIENT = 10.0
-"""Ambient light (0..100) when a world file gives none: a lit classroom as the EV3 sees it."""
+from .world_json import EditedCell, EditedWorld, MazeSource
 
 
 @dataclass
@@ -88,11 +88,9 @@ class World:
         a robot file (a shipped robot's name or a path); none: the default robot.
         Raises WorldFileError naming the row and column of a mistake in the grid.
         """
-        from .maze_file import _middle_floor_cell, new_maze_text, parse_maze
-
         if starts is None:
             probe = Grid.from_text(grid_text, legend, cell_cm)
-            starts = [_middle_floor_cell(probe)]
+            starts = [middle_floor_cell(probe)]
         text = new_maze_text(
             grid_text,
             cell_cm=cell_cm,
@@ -102,7 +100,7 @@ class World:
             description=description,
             robot=robot,
         )
-        world = parse_maze(text, f"<World.from_text {name}>")
+        world = cls(**read_maze(text, f"<World.from_text {name}>"))
         world.name = name
         return world
 
@@ -173,12 +171,8 @@ class World:
         return found
 
     def _rewrite(self) -> None:
-        """Bring `text` up to date with the grid, starts and regions, through the editor's writer (which
+        """Bring `text` up to date with the grid, starts and regions, through the world file's writer (which
         changes only what changed), and take back what a file reader would make of it."""
-        from ..editor.maze_writer import write_maze_text
-        from ..editor.world_json import EditedCell, EditedWorld, MazeSource
-        from .maze_file import new_maze_text, parse_maze
-
         path = self.source or f"<world {self.name}>"
         if self.text is None:
             text = new_maze_text(
@@ -189,16 +183,16 @@ class World:
             chars = base.chars
             cells = [
                 [
-                    EditedCell(cell, chars[row][col] if cell == base.world.grid.cell(col, row) else None)
+                    EditedCell(cell, chars[row][col] if cell == base.grid.cell(col, row) else None)
                     for col, cell in ((col, self.grid.cell(col, row)) for col in range(self.grid.width))
                 ]
                 for row in range(self.grid.height)
             ]
             written = list(base.written_regions)
             added = [
-                (name, list(r.rects)) for name, r in self.regions.items() if name not in base.world.regions
+                (name, list(r.rects)) for name, r in self.regions.items() if name not in base.regions
             ]
             edited = EditedWorld(self.grid.cell_cm, cells, list(self.starts), written + added)
             text = write_maze_text(base, edited)
-        again = parse_maze(text, path)
-        self.text, self.grid, self.regions, self.starts = text, again.grid, again.regions, again.starts
+        again = read_maze(text, path)
+        self.text, self.grid, self.regions, self.starts = text, again["grid"], again["regions"], again["starts"]

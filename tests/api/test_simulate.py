@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from ev3sim2d import World, simulate
-from ev3sim2d.program import ProgramError
+from ev3sim2d.simulator.program import ProgramError
 from ev3sim2d.world import WorldFileError
 
 DRIVE_50_CM = """

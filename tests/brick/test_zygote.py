@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.brick_zygote import BrickZygote, ZygoteGone
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
+from ev3sim2d.simulator.zygote import BrickZygote, ZygoteGone
 from ev3sim2d.world.maze_file import find_maze, load_maze
 
 from ..test_determinism import SOURCES
@@ -122,19 +122,19 @@ def test_a_class_run_starts_python_once_for_its_bricks(tmp_path):
     lesson = load_lesson("line-follow")
     solution = Path(lesson.folder) / "solution.py"
     started = []
-    import ev3sim2d.brick_process as brick_process
+    import ev3sim2d.simulator.bricks as bricks
 
-    real_popen = brick_process.subprocess.Popen
+    real_popen = bricks.subprocess.Popen
 
     def counting_popen(argv, **options):
         started.append(argv)
         return real_popen(argv, **options)
 
-    brick_process.subprocess.Popen = counting_popen
+    bricks.subprocess.Popen = counting_popen
     try:
         result = grade(lesson, find_submissions([solution]), jobs=2).results[0]
     finally:
-        brick_process.subprocess.Popen = real_popen
+        bricks.subprocess.Popen = real_popen
     assert result.score == result.max_score
     assert len(started) == 1 and "zygote" in started[0]  # three bricks, one Python started
 

@@ -17,7 +17,7 @@ import pytest
 from ev3sim2d.devices import registry
 from ev3sim2d.devices.sensor import LegoSensor, Mode
 from ev3sim2d.render.frame import write_png
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.robot_spec import load_robot, parse_robot
 from ev3sim2d.world.source_error import WorldFileError
 from tests.inline_world import arena, two_wheel_robot

@@ -1,8 +1,8 @@
 """`--videos`: what is kept of a failed run, with or without a video writer."""
 
 from ev3sim2d.grading import videos
-from ev3sim2d.run import run_programs
-from ev3sim2d.trace import Trace
+from ev3sim2d.results.trace import Trace
+from ev3sim2d.simulator.run import run_programs
 
 from .trace_maker import room
 

@@ -1,7 +1,7 @@
 """Small worlds and made-up traces for testing checks without running a program."""
 
 from ev3sim2d.grading.run_record import RunRecord
-from ev3sim2d.trace import Trace
+from ev3sim2d.results.trace import Trace
 from ev3sim2d.world.maze_file import parse_maze
 
 MOTORS = [["outA", "medium"], ["outB", "large"], ["outC", "large"]]

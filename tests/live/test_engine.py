@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from ev3sim2d.live.engine import LiveError, LiveRun
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.cell import Cell
 from ev3sim2d.world.maze_file import find_maze, load_maze
 from tests.inline_world import arena

@@ -71,8 +71,8 @@ def test_list_names_the_values_with_their_units(trace, tmp_path):
 
 def test_the_distance_is_in_centimetres_as_the_program_reads_it(trace):
     from ev3sim2d.render.plot import timelines
-    from ev3sim2d.series import robot_series
-    from ev3sim2d.trace import Trace
+    from ev3sim2d.results.series import robot_series
+    from ev3sim2d.results.trace import Trace
 
     loaded = Trace.load(trace)
     raw = robot_series(loaded, 0).sensors["in4"]  # the driver's value0: tenths of a cm

@@ -13,7 +13,7 @@ from ev3sim2d.render.frame import FrameRenderer, draw_world_picture
 from ev3sim2d.render.layout import FrameLayout
 from ev3sim2d.render.robot_layer import robot_colors, robot_looks
 from ev3sim2d.render.timeline import Timeline
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.maze_file import parse_maze
 from ev3sim2d.world.robot_spec import DEFAULT_ROBOT_COLOR, load_robot, shipped_robots_dir
 from tests.inline_world import arena

@@ -3,7 +3,7 @@
 import pytest
 
 from ev3sim2d.render.timeline import Timeline, sound_spans
-from ev3sim2d.trace import Trace
+from ev3sim2d.results.trace import Trace
 
 ROBOT = {
     "name": "robot",

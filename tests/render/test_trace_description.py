@@ -1,7 +1,7 @@
 """What the simulation records about each robot for drawing it survives a trace's save and load."""
 
 from ev3sim2d.render.robot_layer import robot_looks
-from ev3sim2d.trace import Trace
+from ev3sim2d.results.trace import Trace
 
 
 def test_sensor_mounts_and_colour_are_in_the_trace(driving_trace, tmp_path):

@@ -24,7 +24,7 @@ def burn():
 
 
 threading.Thread(target=burn, daemon=True).start()
-real_start = getattr(sys.modules.get("ev3sim2d.program"), "_real_start_new_thread", None)
+real_start = getattr(sys.modules.get("ev3sim2d.simulator.program"), "_real_start_new_thread", None)
 if real_start is not None:
     real_start(burn, ())
 time.sleep(60)

@@ -16,10 +16,10 @@ MARKER = "EV3CHEAT-move-the-wall"
 CELL_CM = 0.5
 
 try:
-    import ev3sim2d.simulation
+    import ev3sim2d.simulator.simulation
     from ev3sim2d.world.grid import Grid
 
-    for sim in [o for o in gc.get_objects() if isinstance(o, ev3sim2d.simulation.Simulation)]:
+    for sim in [o for o in gc.get_objects() if isinstance(o, ev3sim2d.simulator.simulation.Simulation)]:
         world, robot = sim.world, sim.robots[0]
         sonar = next(s for s in world.robot.sensors if s.kind == "ultrasonic")
         forward, left = sonar.offset_cm

@@ -22,9 +22,9 @@ MARKER = "EV3CHEAT-teleport"
 sonar = UltrasonicSensor(INPUT_4)
 wall_cm = sum(sonar.distance_centimeters for _ in range(5)) / 5
 try:
-    import ev3sim2d.robot
+    import ev3sim2d.simulator.robot
 
-    for robot in [o for o in gc.get_objects() if isinstance(o, ev3sim2d.robot.Robot)]:
+    for robot in [o for o in gc.get_objects() if isinstance(o, ev3sim2d.simulator.robot.Robot)]:
         body = robot.body.body
         shift = wall_cm - 10
         heading = robot.heading_rad

@@ -18,9 +18,9 @@ from __future__ import annotations
 import gc
 import time
 
+from ..protocol import ConnectionGone, ProtocolError, wait_for_any
+from ..protocol.stream import cores_idle
 from .brick_port import BrickPort
-from .protocol import ConnectionGone, ProtocolError, wait_for_any
-from .protocol.stream import cores_idle
 from .simulation import Simulation
 
 _monotonic = time.monotonic

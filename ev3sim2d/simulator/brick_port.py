@@ -13,9 +13,9 @@ from __future__ import annotations
 import errno
 from collections import deque
 
-from .devices.brick import Brick
-from .protocol import ProtocolError
-from .trace import OutputLine
+from ..devices.brick import Brick
+from ..protocol import ProtocolError
+from ..results.trace import OutputLine
 
 MAX_KEYS = 10_000
 MAX_LINE = 2_000  # characters of one printed line that are kept

@@ -25,7 +25,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from .brick_process import BOOT, PACKAGE_DIR, _running, brick_environment, shim_root, site_packages
+from .bricks import BOOT, PACKAGE_DIR, _running, brick_environment, shim_root, site_packages
 
 START_TIMEOUT_S = 30.0
 

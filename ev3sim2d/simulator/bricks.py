@@ -32,11 +32,11 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .protocol import PROTOCOL, Channel, SharedChannel
-from .protocol.shared_memory import available as shared_memory_available
-from .protocol.shared_memory import create_memory
+from ..protocol import PROTOCOL, Channel, SharedChannel
+from ..protocol.shared_memory import available as shared_memory_available
+from ..protocol.shared_memory import create_memory
 
-PACKAGE_DIR = Path(__file__).resolve().parent
+PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
 PR_SET_CHILD_SUBREAPER = 36
 CONSOLE_FILE = "console.log"
@@ -63,7 +63,7 @@ class BrickLimits:
 class BrickProcess:
     """A running brick: its process, the simulator's end of its connection, its scratch folder."""
 
-    popen: subprocess.Popen  # (or a brick_zygote.ZygoteChild, which behaves like one)
+    popen: subprocess.Popen  # (or a zygote.ZygoteChild, which behaves like one)
     channel: Channel
     scratch: Path
     console: Path
@@ -255,7 +255,7 @@ def start_brick(
     folder); a grading worker uses its job folder, which the grader removes even if the worker is
     killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
     share the machine's cores: see protocol/shared_memory.py).  zygote: a BrickZygote to fork the brick
-    from (brick_zygote.py); a fresh process when it is None or gone."""
+    from (zygote.py); a fresh process when it is None or gone."""
     compile_brick_code()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
     if os.geteuid() == 0:

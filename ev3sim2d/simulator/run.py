@@ -17,16 +17,16 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..protocol import ProtocolError
+from ..results.trace import OutputLine, Trace
+from ..world.pose import Pose
+from ..world.robot_spec import RobotSpec
+from ..world.world import World
 from .brick_port import BrickPort
-from .brick_process import BrickLimits, BrickProcess, brick_welcome, start_brick
+from .bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
 from .program import Program, ProgramError
-from .protocol import ProtocolError
 from .session import Session
 from .simulation import Simulation, StartBlocked
-from .trace import OutputLine, Trace
-from .world.pose import Pose
-from .world.robot_spec import RobotSpec
-from .world.world import World
 
 _real_perf_counter = time.perf_counter
 _monotonic = time.monotonic

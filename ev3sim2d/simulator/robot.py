@@ -16,15 +16,15 @@ from __future__ import annotations
 
 import math
 
-from .devices.brick import Brick
-from .devices.color import ColorSensor
-from .devices.motor import TachoMotor
-from .devices.nxt_sound import QUIET_PCT, SOUND_REF_CM, SPEAKER_PCT
-from .devices.registry import SENSORS
-from .devices.touch import DEFAULT_BUMPER_CM
+from ..devices.brick import Brick
+from ..devices.color import ColorSensor
+from ..devices.motor import TachoMotor
+from ..devices.nxt_sound import QUIET_PCT, SOUND_REF_CM, SPEAKER_PCT
+from ..devices.registry import SENSORS
+from ..devices.touch import DEFAULT_BUMPER_CM
+from ..world.pose import Pose
+from ..world.robot_spec import RobotSpec
 from .physics import BRAKE_PCT, COAST_PCT, HOLD_PCT, Physics
-from .world.pose import Pose
-from .world.robot_spec import RobotSpec
 
 
 def body_outline(spec: RobotSpec) -> list[tuple[float, float]]:

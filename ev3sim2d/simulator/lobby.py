@@ -23,8 +23,8 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .protocol import PROTOCOL, Channel, ConnectionGone, ProtocolError, encode
-from .protocol.joining import MAX_JOIN_BYTES, check_join
+from ..protocol import PROTOCOL, Channel, ConnectionGone, ProtocolError, encode
+from ..protocol.joining import MAX_JOIN_BYTES, check_join
 
 JOIN_TIMEOUT_S = 10.0  # a connection says who it is within this much time
 START_TIMEOUT_S = 60.0  # its brick greets within this much time (an interpreter starting on a slow laptop)

@@ -7,10 +7,10 @@ import socket
 
 import pytest
 
-from ev3sim2d.brick_port import BrickPort
 from ev3sim2d.protocol import Channel
-from ev3sim2d.session import Session
-from ev3sim2d.simulation import Simulation
+from ev3sim2d.simulator.brick_port import BrickPort
+from ev3sim2d.simulator.session import Session
+from ev3sim2d.simulator.simulation import Simulation
 from ev3sim2d.world.maze_file import parse_maze
 
 TICK = 10_000

@@ -12,15 +12,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .devices.motor import state_text
+from ..devices.motor import state_text
+from ..results.trace import Trace
+from ..world.cell import Cell
+from ..world.grid import Grid
+from ..world.pose import Pose
+from ..world.robot_spec import RobotSpec
+from ..world.world import World
 from .physics import Physics
 from .robot import Robot
-from .trace import Trace
-from .world.cell import Cell
-from .world.grid import Grid
-from .world.pose import Pose
-from .world.robot_spec import RobotSpec
-from .world.world import World
 
 DEGREES = 180.0 / math.pi
 TICK_US = 10_000  # the world advances in steps of 10 ms of virtual time

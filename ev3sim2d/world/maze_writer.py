@@ -1,4 +1,5 @@
-"""An edited world written back into its world file's text, changing only what was edited.
+"""A world file's text written: a new one (`new_maze_text`), or an edited world written back into its
+file's text, changing only what was edited.
 
 Each top-level block the editor knows (`cell_cm:`, `legend:`, `grid:`,
 `start:`, `regions:`) is replaced only when its content changed; everything
@@ -11,13 +12,16 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Mapping
 
 import yaml
 
-from ..world.cell import Cell
-from ..world.legend import Legend
-from ..world.yaml_source import Fields, Node, load_yaml_text
+from .cell import Cell
+from .grid_text import text_rows
+from .legend import Legend, LegendEntry, as_entry
+from .pose import Pose
 from .world_json import EditedWorld, MazeSource
+from .yaml_source import Fields, Node, load_yaml_text
 
 FREE_CHARS = "ABCDEFHIJKLMOPQSTUVXZacdefhijlmopqstuvxz@%&+=*~^$!?<>"
 """Characters a new legend entry may take (never a quote, backslash, space or '#')."""
@@ -128,9 +132,9 @@ def _kept_char(legend: Legend, edited_cell, original_char: str | None) -> str | 
 
 
 def _chars_unchanged(source: MazeSource, edited: EditedWorld) -> bool:
-    if (edited.width, edited.height) != (source.world.grid.width, source.world.grid.height):
+    if (edited.width, edited.height) != (source.grid.width, source.grid.height):
         return False
-    legend = source.world.grid.legend
+    legend = source.grid.legend
     return all(
         _kept_char(legend, edited.cells[row][col], source.chars[row][col]) == source.chars[row][col]
         for row in range(edited.height)
@@ -140,8 +144,8 @@ def _chars_unchanged(source: MazeSource, edited: EditedWorld) -> bool:
 
 def _grid_chars(source: MazeSource, edited: EditedWorld) -> tuple[list[str], dict[str, Cell]]:
     """The grid rows (top row first) and the legend entries it needs that the file lacks."""
-    legend = source.world.grid.legend
-    width, height = source.world.grid.width, source.world.grid.height
+    legend = source.grid.legend
+    width, height = source.grid.width, source.grid.height
     new_entries: dict[str, Cell] = {}
     chosen: dict[Cell, str] = {}
     free = [c for c in FREE_CHARS if c not in legend]
@@ -309,3 +313,60 @@ def _num(value: float) -> str:
     if value.is_integer():
         return str(int(value))
     return repr(round(value, 6))
+
+
+# -- a new world file ---------------------------------------------------------------------------
+
+
+def new_maze_text(
+    grid_text: str,
+    *,
+    cell_cm: float,
+    starts: list[Pose | tuple],
+    legend: Mapping[str, LegendEntry | Cell | str] | None = None,
+    title: str = "",
+    description: str = "",
+    robot: str | None = None,
+) -> str:
+    """The YAML of a new maze file: a text grid (top row first), starts as Poses, (col, row) or
+    (col, row, heading_deg) cells, legend entries beyond the default ones, and a robot file's name."""
+    lines = [f"title: {json.dumps(title)}"] if title else []
+    if description:
+        lines.append(f"description: {json.dumps(description)}")
+    lines.append(f"cell_cm: {cell_cm:g}")
+    if legend:
+        lines.append("legend:")
+        for char, value in legend.items():
+            lines.append(f"  {json.dumps(char)}: {json.dumps(_entry_mapping(as_entry(value)))}")
+    lines.append("grid: |")
+    lines += [f"  {row.text}" for row in text_rows(grid_text)]
+    lines.append("start:")
+    for start in starts:
+        fields = ", ".join(f"{key}: {json.dumps(value)}" for key, value in _start_mapping(start).items())
+        lines.append(f"  - {{{fields}}}")
+    if robot:
+        lines.append(f"robot: {json.dumps(robot)}")
+    return "\n".join(lines) + "\n"
+
+
+def _entry_mapping(entry: LegendEntry) -> dict:
+    cell = entry.cell
+    mapping: dict = {"wall": True} if cell.wall else {}
+    if cell.color is not None:
+        mapping["color"] = cell.color
+    if cell.shade is not None:
+        mapping["shade"] = cell.shade
+    if entry.region is not None:
+        mapping["region"] = entry.region
+    return mapping
+
+
+def _start_mapping(start: Pose | tuple) -> dict:
+    if isinstance(start, Pose):
+        return {"x_cm": start.x_cm, "y_cm": start.y_cm, "heading_deg": start.heading_deg}
+    if isinstance(start, tuple | list) and len(start) in (2, 3):
+        heading = start[2] if len(start) == 3 else 0
+        return {"cell": [int(start[0]), int(start[1])], "heading_deg": heading}
+    raise ValueError(
+        f"a start is a Pose(x_cm, y_cm, heading_deg), a (col, row) cell or (col, row, heading_deg), got {start!r}"
+    )

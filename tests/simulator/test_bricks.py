@@ -4,7 +4,7 @@ caller's environment reaches it, and how it ends is told truthfully."""
 import json
 import os
 
-from ev3sim2d.brick_process import brick_environment
+from ev3sim2d.simulator.bricks import brick_environment
 
 
 def printed(result):
@@ -96,8 +96,8 @@ SUBREAPER_SCRIPT = """
 import os, subprocess, sys, time
 sys.path.insert(0, os.getcwd())
 from pathlib import Path
-from ev3sim2d.brick_process import become_subreaper
-from ev3sim2d.run import run_programs
+from ev3sim2d.simulator.bricks import become_subreaper
+from ev3sim2d.simulator.run import run_programs
 from tests.inline_world import arena
 assert become_subreaper()
 mine = subprocess.Popen(["sleep", "60"])  # a child of this process's own: a browser, a test helper

@@ -4,11 +4,11 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.editor.maze_writer import write_maze_text
-from ev3sim2d.editor.world_json import EditedCell, MazeSource, edited_from_json
 from ev3sim2d.world.cell import WALL, Cell
 from ev3sim2d.world.maze_file import parse_maze
+from ev3sim2d.world.maze_writer import write_maze_text
 from ev3sim2d.world.pose import Pose
+from ev3sim2d.world.world_json import EditedCell, MazeSource, edited_from_json
 
 MAZES = sorted((Path(__file__).resolve().parents[2] / "mazes").glob("*.yaml"))
 
@@ -56,7 +56,7 @@ def test_edited_cells_start_and_regions_are_what_the_loader_reads():
             assert world.grid.cell(col, row) == edited.cells[row][col].cell, (col, row)
     assert world.starts == [Pose(55.0, 15.0, 45.0)]
     assert world.regions["finish"].rects == ((10.0, 10.0, 30.0, 20.0),)
-    assert world.regions["goal"] == source.world.regions["goal"]  # legend region kept
+    assert world.regions["goal"] == source.regions["goal"]  # legend region kept
     # comments and other keys are kept
     assert text.startswith(source.text.split("legend:")[0])
     assert "title: Maze" in text and "  G: {color: green, region: goal}\n" in text

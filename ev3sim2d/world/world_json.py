@@ -13,13 +13,15 @@ import math
 import re
 from dataclasses import dataclass
 
-from ..world.cell import WALL_SHADE, Cell
-from ..world.colors import EV3_COLORS
-from ..world.maze_file import parse_maze
-from ..world.pose import Pose
-from ..world.rectangles import Rect, merge_cells, spans_to_rects
-from ..world.world import World
-from ..world.yaml_source import Fields, load_yaml_text
+from .cell import WALL_SHADE, Cell
+from .colors import EV3_COLORS
+from .grid import Grid
+from .maze_reader import read_maze
+from .pose import Pose
+from .rectangles import Rect, merge_cells, spans_to_rects
+from .region import Region
+from .robot_spec import RobotSpec
+from .yaml_source import Fields, load_yaml_text
 
 MAX_CELLS_PER_SIDE = 200
 MAX_CELL_CM = 1000.0
@@ -58,29 +60,35 @@ class EditedWorld:
 
 
 class MazeSource:
-    """A world file's text, the World read from it, and what the editor needs to write it back."""
+    """A world file's text, the world read from it (its grid, starts, regions, title and robot), and
+    what the editor needs to write it back."""
 
     def __init__(self, text: str, path: str) -> None:
         self.text = text
         self.path = path
-        self.world: World = parse_maze(text, path)
-        grid = self.world.grid
+        fields = read_maze(text, path)  # raises WorldFileError where the text is not a valid world
+        self.grid: Grid = fields["grid"]
+        self.starts: list[Pose] = fields["starts"]
+        self.regions: dict[str, Region] = fields["regions"]
+        self.title: str = fields["title"]
+        self.robot: RobotSpec = fields["robot"]
+        grid = self.grid
         lines = grid.to_text().split("\n")
         self.chars: list[list[str]] = [list(lines[grid.height - 1 - row]) for row in range(grid.height)]
         self.written_regions: list[tuple[str, list[Rect]]] = _written_regions(text, path, grid.cell_cm)
 
     def as_edited(self) -> EditedWorld:
         """The world unchanged, as the page would send it back."""
-        grid = self.world.grid
+        grid = self.grid
         cells = [
             [EditedCell(grid.cell(col, row), self.chars[row][col]) for col in range(grid.width)]
             for row in range(grid.height)
         ]
-        return EditedWorld(grid.cell_cm, cells, list(self.world.starts), list(self.written_regions))
+        return EditedWorld(grid.cell_cm, cells, list(self.starts), list(self.written_regions))
 
     def to_json(self) -> dict:
         """The world for the page."""
-        world, grid = self.world, self.world.grid
+        grid = self.grid
         legend = grid.legend
         cells = []
         for row in range(grid.height):
@@ -96,15 +104,15 @@ class MazeSource:
                     for col, cell in ((col, grid.cell(col, row)) for col in range(grid.width))
                 ]
             )
-        body = world.robot.body
+        body = self.robot.body
         return {
             "file": self.path,
-            "title": world.title,
+            "title": self.title,
             "width": grid.width,
             "height": grid.height,
             "cell_cm": grid.cell_cm,
             "cells": cells,
-            "starts": [pose.as_dict() for pose in world.starts],
+            "starts": [pose.as_dict() for pose in self.starts],
             "regions": [
                 {"name": name, "rects": [list(r) for r in rects]} for name, rects in self.written_regions
             ],
@@ -112,7 +120,7 @@ class MazeSource:
                 "front_cm": body.front_cm,
                 "back_cm": body.back_cm,
                 "width_cm": body.width_cm,
-                "color": list(world.robot.color),
+                "color": list(self.robot.color),
             },
             "palette": {
                 "colors": {name: list(color.display_rgb) for name, color in EV3_COLORS.items()},

@@ -1,6 +1,6 @@
 """The trace: what a run recorded, saved and loaded back unchanged."""
 
-from ev3sim2d.trace import POSE_COLUMNS, Trace
+from ev3sim2d.results.trace import POSE_COLUMNS, Trace
 
 
 def test_a_saved_trace_loads_back_with_the_same_fingerprint(run, tmp_path):
@@ -103,7 +103,7 @@ MoveTank(OUTPUT_B, OUTPUT_C).on_for_seconds(50, 50, {seconds})
 
 
 def _two_robots(tmp_path, first_drives_s: float):
-    from ev3sim2d.run import run_programs
+    from ev3sim2d.simulator.run import run_programs
     from tests.inline_world import arena
 
     paths = [tmp_path / "behind.py", tmp_path / "ahead.py"]

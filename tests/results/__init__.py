@@ -1,0 +1,1 @@
+"""Tests of what a run leaves (ev3sim2d/results/)."""

@@ -1,0 +1,1 @@
+"""Tests of the simulator process (ev3sim2d/simulator/)."""
