@@ -70,10 +70,8 @@ class BrickRun:
     def run(self) -> None:
         s = self.scheduler
         try:
-            with open(self.program_path, encoding="utf-8") as f:
-                source = f.read()
-            program = Program(self.program_path, source)
-        except (OSError, UnicodeDecodeError, SyntaxError, ValueError) as exc:
+            program = Program.read(self.program_path)  # as Python reads a file: BOM, coding line, line ends
+        except (OSError, SyntaxError, ValueError) as exc:
             self._end({"t_us": 0, "status": "error", "error": error_report(exc, self.program_path, 0.0)})
             return
         task = s.spawn("robot", None, self.env.main_body(program.run), _real_start_new_thread, main=True)

@@ -24,7 +24,7 @@ from pathlib import Path
 
 from ..simulator.simulation import Simulation, StartBlocked
 from ..world.source_error import WorldFileError
-from ..world.yaml_source import Fields, Node, load_yaml_text, read_text_file
+from ..world.yaml_source import Fields, Node, foreign_path_hint, load_yaml_text, read_text_file, written_path
 from .check import COMMON_KEYS, Check, builtin_checks, checks_from_node
 from .variant import STUDENT, OtherRobot, Variant, read_others, read_robot, variant_from_node
 
@@ -338,9 +338,9 @@ def _check_start_fits(variant: Variant, node: Node) -> None:
 
 def _program(fields: Fields, key: str, folder: Path) -> Path | None:
     name = fields.text(key, default=f"{key}.py", example=f"{key}: {key}.py").strip()
-    path = folder / name
+    path = folder / written_path(name)  # `programs\starter.py` from Windows too
     if key in fields and not path.is_file():
-        raise fields.get(key).error(f"no file '{name}' in {folder}")
+        raise fields.get(key).error(f"no file '{name}' in {folder}{foreign_path_hint(name)}")
     return path if path.is_file() else None
 
 

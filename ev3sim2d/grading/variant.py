@@ -23,7 +23,7 @@ from ..world.maze_file import load_maze, shipped_mazes_dir
 from ..world.pose import Pose
 from ..world.robot_spec import SENSOR_KINDS, RobotSpec, find_robot, load_robot, shipped_robot_names
 from ..world.world import World
-from ..world.yaml_source import Fields, Node
+from ..world.yaml_source import Fields, Node, foreign_path_hint, written_path
 
 VARIANT_KEYS = (
     "name",
@@ -134,10 +134,13 @@ def _named(folders: list[Path]) -> str:
 
 
 def find_world_file(value: str, folders: Path | list[Path]) -> Path | None:
-    """A world file in the given folders, in order (with or without .yaml), else a shipped maze by name."""
-    candidate = Path(value)
+    """A world file in the given folders, in order (with or without .yaml), else a shipped maze by name;
+    `value` is a path as written in a file on any system ('\\' or '/' between folders)."""
+    candidate = written_path(value)
     places = [
-        place for folder in _folders(folders) for place in (folder / candidate, folder / f"{value}.yaml")
+        place
+        for folder in _folders(folders)
+        for place in (folder / candidate, folder / written_path(f"{value}.yaml"))
     ]
     stem = candidate.stem if candidate.suffix in (".yaml", ".yml") else candidate.name
     places.append(shipped_mazes_dir() / f"{stem}.yaml")
@@ -148,11 +151,12 @@ def read_robot(node: Node, folders: Path | list[Path]) -> RobotSpec:
     """`robot: FILE` (in the given folders, in order) or the name of a shipped robot."""
     value = node.as_text("robot", "robot: ev3-driving-base").strip()
     folders = _folders(folders)
-    path = next((found for f in folders if (found := find_robot(value, f)) is not None), None)
+    written = written_path(value)
+    path = next((found for f in folders if (found := find_robot(written, f)) is not None), None)
     if path is None:
         raise node.error(
             f"no robot file '{value}' in {_named(folders)} and no shipped robot by that name; "
-            f"shipped robots: {', '.join(shipped_robot_names())}"
+            f"shipped robots: {', '.join(shipped_robot_names())}{foreign_path_hint(value)}"
         )
     return load_robot(path)
 
@@ -169,10 +173,12 @@ def read_others(node: Node, folders: Path | list[Path], student_start: int) -> l
             )
         fields = item.as_fields("others", ("name", "program", "start"), OTHERS_EXAMPLE)
         value = fields.text("program", example="program: pacer.py").strip()
-        program = next((f / value for f in folders if (f / value).is_file()), None)
+        written = written_path(value)
+        program = next((f / written for f in folders if (f / written).is_file()), None)
         if program is None or program.suffix != ".py":
             raise fields.get("program").error(
                 f"no program '{value}' in {_named(folders)}; give a .py file of the lesson's folder"
+                + foreign_path_hint(value)
             )
         name = fields.text("name", default=program.stem, example="name: pacer").strip()
         if not name or any(c in name for c in "/\\ ") or name == STUDENT:
@@ -284,6 +290,7 @@ def variant_from_node(
         raise world_node.error(
             f"no world file '{world_value}' in {_named(folders)} and no shipped maze by that name; "
             "give a .yaml file in the lesson's folder or a shipped maze (ev3sim2d mazes)"
+            + foreign_path_hint(world_value)
         )
     time_s = fields.number("time_s", default=default_time_s, unit="simulated seconds", example="time_s: 60")
     if time_s <= 0:

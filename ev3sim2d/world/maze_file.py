@@ -29,6 +29,7 @@ def load_maze(path: str | Path) -> World:
     """Read a maze file."""
     return parse_maze(read_text_file(path), str(path))
 
+
 def parse_maze(text: str, path: str = "<string>") -> World:
     """Read a maze from YAML text; `path` names it in errors and resolves a relative `robot:` file."""
     return World(**read_maze(text, path))
@@ -61,6 +62,7 @@ def maze_from_text_grid(
         for region, spots in cells.region_cells.items()
     }
     return World(name, name, "", grid, [pose], regions, robot or default_robot())
+
 
 # -- shipped mazes ----------------------------------------------------------------------------
 

@@ -28,7 +28,7 @@ from .robot_spec import (
     shipped_robot_names,
 )
 from .source_error import WorldFileError
-from .yaml_source import Fields, Node, load_yaml_text
+from .yaml_source import Fields, Node, foreign_path_hint, load_yaml_text, written_path
 
 DEFAULT_AMBIENT = 10.0
 """Ambient light (0..100) when a world file gives none: a lit classroom as the EV3 sees it."""
@@ -337,12 +337,13 @@ def _robot(node: Node | None, path: str) -> RobotSpec:
         return robot_from_mapping(node, source=None if path.startswith("<") else path)
     if node.is_scalar and not node.is_null:
         base_dir = None if path.startswith("<") else Path(path).parent
-        found = find_robot(node.text, base_dir)
+        found = find_robot(written_path(node.text), base_dir)  # `robots\bot.yaml` from Windows too
         if found is None:
             shipped = ", ".join(shipped_robot_names())
             raise node.error(
-                f"no robot file {node.describe()} (looked next to the maze file, in the current folder, "
+                f"no robot file '{node.text}' (looked next to the maze file, in the current folder, "
                 f"and among the shipped robots: {shipped}); check the name or write the robot inline"
+                + foreign_path_hint(node.text)
             )
         return load_robot(found)
     raise node.error(

@@ -453,8 +453,11 @@ def default_robot() -> RobotSpec:
     return copy.deepcopy(_default_robot())
 
 
-def find_robot(name_or_path: str, base_dir: Path | None = None) -> Path | None:
-    """A robot file: a path (relative to `base_dir` first), else a shipped robot by name; None if neither."""
+def find_robot(name_or_path: str | Path, base_dir: Path | None = None) -> Path | None:
+    """A robot file: a path (relative to `base_dir` first), else a shipped robot by name; None if neither.
+
+    A path written in a file comes here through `written_path`, so `robots\\bot.yaml` is found on any system.
+    """
     candidate = Path(name_or_path)
     places = [base_dir / candidate] if base_dir is not None and not candidate.is_absolute() else []
     places.append(candidate)

@@ -8,10 +8,11 @@ missing key, a wrong type or an unknown key (usually a typo) into a
 
 from __future__ import annotations
 
+import codecs
 import difflib
 import math
 from collections.abc import Iterable, Iterator
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 from typing import Any
 
 import yaml
@@ -273,21 +274,69 @@ def load_yaml_text(text: str, path: str = "<string>") -> Node:
 
 
 def read_text_file(path: str | Path) -> str:
-    """A file's text, with a missing or unreadable file reported as WorldFileError."""
+    """A file's text as an editor on any system may have saved it: UTF-8 with or without a BOM (or UTF-16
+    with one), with Windows, Mac or Unix line endings (each a plain "\\n" in the text, so lines and columns
+    count as an editor counts them).  A missing, unreadable or non-UTF-8 file is a WorldFileError."""
     try:
-        return Path(path).read_text(encoding="utf-8")
+        data = Path(path).read_bytes()
     except FileNotFoundError:
         raise WorldFileError(str(path), None, None, "no such file; check the name and folder") from None
     except IsADirectoryError:
         raise WorldFileError(
             str(path), None, None, "this is a folder; give the path of a .yaml file"
         ) from None
-    except UnicodeDecodeError as err:
-        raise WorldFileError(
-            str(path), None, None, f"not UTF-8 text (byte {err.start}); save the file as UTF-8"
-        ) from None
     except OSError as err:
         raise WorldFileError(str(path), None, None, f"cannot read the file: {err.strerror}") from None
+    return decode_text(data, str(path))
+
+
+def decode_text(data: bytes, path: str = "<string>") -> str:
+    """The text of a YAML file's bytes (see read_text_file); `path` names the file in errors."""
+    for bom, encoding in (
+        (codecs.BOM_UTF8, "utf-8"),
+        (codecs.BOM_UTF16_LE, "utf-16-le"),
+        (codecs.BOM_UTF16_BE, "utf-16-be"),
+    ):
+        if data.startswith(bom):
+            data, codec = data[len(bom) :], encoding
+            break
+    else:
+        codec = "utf-8"
+    try:
+        text = data.decode(codec)
+    except UnicodeDecodeError as err:
+        lines = _one_newline(data[: err.start].decode(codec, "replace")).split("\n")
+        raise WorldFileError(
+            path,
+            len(lines),
+            len(lines[-1]) + 1,
+            f"byte 0x{data[err.start]:02x} is not {codec[:6].upper()} text (the file was saved in another "
+            "encoding, e.g. Windows' cp1252); save the file as UTF-8 (in Notepad: File, Save as, "
+            "Encoding: UTF-8)",
+        ) from None
+    return _one_newline(text)
+
+
+def _one_newline(text: str) -> str:
+    """Windows' "\\r\\n" and old Macs' "\\r" line endings as "\\n"."""
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def written_path(text: str) -> Path:
+    """A path as a file written on any system gives it: '\\' separates folders as '/' does, so
+    `robots\\my bot.yaml`, written on Windows, names the same file on Linux and macOS."""
+    return Path(text.replace("\\", "/"))
+
+
+def foreign_path_hint(text: str) -> str:
+    """A hint for a path that is absolute only on another system (`C:\\Users\\...` read on Linux, `/home/...`
+    on Windows), else ''."""
+    if Path(text).is_absolute() or not (PureWindowsPath(text).is_absolute() or text.startswith("/")):
+        return ""
+    return (
+        f"; '{text}' is a path on another computer: put the file beside this one (or in a folder "
+        "beside it) and write its path from here, e.g. `robots/my-bot.yaml`"
+    )
 
 
 def _syntax_error(err: yaml.MarkedYAMLError, path: str) -> WorldFileError:
@@ -301,6 +350,11 @@ def _syntax_error(err: yaml.MarkedYAMLError, path: str) -> WorldFileError:
         hint = "indent with spaces, not tabs"
     elif "mapping values are not allowed" in problem:
         hint = "check the indentation, and put quotes around a value that contains ': '"
+    elif "escape character" in problem:
+        hint = (
+            "in \"double quotes\" a backslash starts an escape such as \\n; write a path with '/' instead "
+            "of '\\', or in 'single quotes'"
+        )
     elif "expected a single document" in problem:
         hint = "a world file holds one document; remove the extra '---' line"
     else:
