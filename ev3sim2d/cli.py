@@ -54,19 +54,22 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _with_fixed_string_hashing() -> None:
-    """Start again with PYTHONHASHSEED=0 unless it is set: a program that iterates over a set of
-    strings must do the same thing in every run, as the fingerprint promises."""
-    if os.environ.get("PYTHONHASHSEED") is None:
-        os.environ["PYTHONHASHSEED"] = "0"
-        sys.stdout.flush()
-        sys.stderr.flush()
-        os.execv(sys.executable, [sys.executable, "-m", "ev3sim2d", *sys.argv[1:]])
+def _console_never_fails() -> None:
+    """What a program prints, its file names and every message reach a console whatever it can show:
+    a Windows console or a redirected output there is cp1252 (or cp437), a Linux one under LC_ALL=C is
+    ASCII; a character it cannot show is written as a backslash escape (\u03c0), never an error."""
+    for stream in (sys.stdout, sys.stderr):
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            try:
+                reconfigure(errors="backslashreplace")
+            except (ValueError, OSError):
+                pass
 
 
 def main(argv: list[str] | None = None) -> int:
     if argv is None:  # the real command line, not a call from code
-        _with_fixed_string_hashing()
+        _console_never_fails()
     args = _parser().parse_args(argv)
     command = next(c for c in COMMANDS if c.NAME == args.command)
     try:

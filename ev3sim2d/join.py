@@ -140,12 +140,11 @@ def run_joined(
         f"joined '{seat.get('world', '?')}' as robot {seat['number']} of {seat['robots']}; "
         "the run starts when every robot has a program"
     )
-    brick, read_paths = start_brick([path.parent])
+    limits = _limits(seat)
+    brick, read_paths = start_brick([path.parent], limits=limits)
     try:
         brick.channel.send(
-            brick_welcome(
-                brick, read_paths, path, seat["robot"], seat["tick_us"], seat["seed"], _limits(seat)
-            )
+            brick_welcome(brick, read_paths, path, seat["robot"], seat["tick_us"], seat["seed"], limits)
         )
         return _relay(brick, net, seat, echo)
     finally:

@@ -90,10 +90,14 @@ def layout_faults(graph: dict[str, set[str]]) -> list[str]:
                 if here not in FRONT_DOORS:
                     faults.append(f"{module} imports {target}: only the front doors may import the brick")
             elif there == "editor" and here != "editor" and module not in EDITOR_USERS:
-                faults.append(f"{module} imports {target}: only the edit command and the live server use editor/")
+                faults.append(
+                    f"{module} imports {target}: only the edit command and the live server use editor/"
+                )
             elif layer_of(target) is not None and layer_of(target) < layer_of(module):
                 upper, lower = LAYERS[layer_of(target)][0], LAYERS[layer_of(module)][0]
-                faults.append(f"{module} imports {target}: {lower} must not import {upper} (imports point down)")
+                faults.append(
+                    f"{module} imports {target}: {lower} must not import {upper} (imports point down)"
+                )
     for circle in circles(graph):
         if not all(m.startswith(ALLOWED_CIRCLE_PREFIXES) for m in circle):
             faults.append(f"a circle of imports between files: {' -> '.join(sorted(circle))}")
@@ -175,7 +179,9 @@ def test_readme_names_every_folder_of_the_tree_in_its_layout_section():
     folders = {path.parent.name for path in (ROOT / "ev3sim2d").glob("*/__init__.py")}
     assert set(re.findall(r"`(\w+)/`", section)) == folders | {"ev3sim2d", "ev3dev2"}
     front_door_files = {part for part in FRONT_DOORS if (ROOT / "ev3sim2d" / f"{part}.py").is_file()}
-    assert {f"{name}.py" for name in front_door_files - {"__main__"}} <= set(re.findall(r"`(\w+\.py)`", section))
+    assert {f"{name}.py" for name in front_door_files - {"__main__"}} <= set(
+        re.findall(r"`(\w+\.py)`", section)
+    )
 
 
 def plant(tmp_path: Path, files: dict[str, str]) -> dict[str, set[str]]:
@@ -209,7 +215,9 @@ def test_the_check_passes_a_layered_package(tmp_path):
 
 
 def test_the_check_fails_an_upward_import(tmp_path):
-    graph = plant(tmp_path, {**LAYERED, "world/pose.py": "def later():\n    from ..simulator.session import S\n"})
+    graph = plant(
+        tmp_path, {**LAYERED, "world/pose.py": "def later():\n    from ..simulator.session import S\n"}
+    )
     assert layout_faults(graph) == [
         "ev3sim2d.world.pose imports ev3sim2d.simulator.session: the simulator's parts must not import "
         "the simulator (imports point down)"

@@ -3,7 +3,10 @@
 The simulator starts it as `python -s -S -B -P boot.py FD MEMORY_FD ROOT` with a
 short fixed environment: FD is the connection (one end of a socket pair),
 MEMORY_FD the shared memory of a SharedChannel (-1: the messages go through the
-socket), ROOT the folder that holds the `ev3sim2d` package.  Only the standard library, ev3sim2d.brick,
+socket), ROOT the folder that holds the `ev3sim2d` package.  Where a socket cannot
+be handed to a new process (Windows), it starts it as `boot.py tcp PORT ROOT` with
+a one-time token on its standard input, and the brick connects to the simulator
+over loopback TCP (protocol/loopback.py).  Only the standard library, ev3sim2d.brick,
 ev3sim2d.protocol and the ev3dev2 shim are loaded here: nothing of the world,
 the devices, the lesson or the grader exists in this process.
 
@@ -34,12 +37,25 @@ def _connect(fd: int, memory_fd: int):
     return Channel(sock)
 
 
+def _connect_tcp(port: int):
+    from ev3sim2d.protocol.loopback import connect
+
+    token = sys.stdin.readline().strip()
+    sys.stdin.close()
+    return connect(port, token)
+
+
 def main(argv: list[str]) -> int:
+    if sys.path and os.path.dirname(os.path.abspath(__file__)) == os.path.abspath(sys.path[0] or "."):
+        del sys.path[0]  # (a Python without -P put this folder first: the program must not import from it)
     if argv[1] == "zygote":
         return _zygote(int(argv[2]), argv[3], argv[4], json_list(argv[5]))
     root = argv[3]
     sys.path.insert(0, root)
-    return run_brick(int(argv[1]), int(argv[2]), root)
+    if argv[1] == "tcp":
+        return run_brick(lambda: _connect_tcp(int(argv[2])), root)
+    fd, memory_fd = int(argv[1]), int(argv[2])
+    return run_brick(lambda: _connect(fd, memory_fd), root, fd)
 
 
 def json_list(text: str) -> list[str]:
@@ -63,17 +79,22 @@ def _zygote(control_fd: int, root: str, shim_root: str, site_packages: list[str]
         importlib.import_module(name)
     gc.collect()
     gc.freeze()  # a forked brick's collections never walk (and so never copy) the zygote's pages
-    return zygote.serve(control_fd, root, run_brick)
+    return zygote.serve(
+        control_fd, root, lambda fd, memory, top: run_brick(lambda: _connect(fd, memory), top, fd)
+    )
 
 
-def run_brick(fd: int, memory_fd: int, root: str) -> int:
+def run_brick(connect, root: str, fd: int | None = None) -> int:
     """A brick's life from its connection on: welcome, runtime and shim, sandbox, hello, program."""
+    from ev3sim2d.brick import sandbox  # noqa: F401 - before the runtime makes threads and sleep virtual
     from ev3sim2d.protocol import PROTOCOL, ProtocolError
 
-    channel = _connect(fd, memory_fd)
+    channel = connect()
+    fd = channel.fileno() if fd is None else fd
     try:
         welcome = channel.receive(timeout_s=120)
-    except ProtocolError:
+    except ProtocolError as err:
+        print(f"the brick could not read its welcome: {err}", file=sys.stderr)
         return 2
     if not welcome or welcome[0] != "welcome" or welcome[1].get("protocol") != PROTOCOL:
         channel.send(["end", {"t_us": 0, "status": "refused", "error": None}])

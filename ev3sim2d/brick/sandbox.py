@@ -57,15 +57,16 @@ give concurrent bricks different `unprivileged_uid`s then.
 
 from __future__ import annotations
 
+import _thread
 import ctypes
 import errno
 import os
 import platform
-import resource
 import signal
 import stat
 import struct
 import sys
+import time
 
 _MIB = 1024 * 1024
 _M_ARENA_MAX = -8  # mallopt(3), glibc
@@ -183,7 +184,36 @@ def _syscall_table() -> dict[str, dict[str, int]]:
 _SECCOMP_ARCHES = {"x86_64": (0xC000003E, True), "aarch64": (0xC00000B7, False)}
 _MACHINE_ALIASES = {"amd64": "x86_64", "arm64": "aarch64"}
 
-_libc = ctypes.CDLL(None, use_errno=True)
+_libraries: dict = {}
+
+
+def _c_library():
+    """This process's C library (None where it cannot be loaded by name None, as on Windows)."""
+    if "c" not in _libraries:
+        try:
+            _libraries["c"] = ctypes.CDLL(None, use_errno=True)
+        except (OSError, TypeError):
+            _libraries["c"] = None
+    return _libraries["c"]
+
+
+def linux_kernel() -> bool:
+    """Whether this kernel offers the Linux interfaces the full sandbox is built of: prctl and unshare
+    in its C library, and so the Linux system call numbers Landlock and seccomp are reached by (on
+    another kernel those numbers are other calls, which must never be made)."""
+    libc = _c_library()
+    if libc is None or not hasattr(os, "getresuid"):
+        return False
+    return all(getattr(libc, name, None) is not None for name in ("prctl", "unshare", "capget"))
+
+
+def _resource():
+    """The resource module where this system has it (not on Windows)."""
+    try:
+        import resource
+    except ImportError:
+        return None
+    return resource
 
 
 class SandboxError(RuntimeError):
@@ -300,6 +330,8 @@ def enter(policy: SandboxPolicy) -> dict:
     if not policy.write_paths:
         raise SandboxError("a sandbox needs a scratch folder in write_paths")
     _only_thread()
+    if not linux_kernel():
+        return _enter_elsewhere(policy)
     report: dict[str, str] = {}
     original_parent = os.getppid()
     random_state = _random_state()
@@ -362,6 +394,111 @@ def enter(policy: SandboxPolicy) -> dict:
         _become_init(status_w)
         _restore_random_state(random_state)
     return report
+
+
+# ---------------------------------------------------------------- on other systems
+
+LINUX_LAYERS = (
+    "root_dropped",
+    "capabilities",
+    "user_ns",
+    "mount_ns",
+    "net_ns",
+    "pid_ns",
+    "ipc_ns",
+    "no_new_privs",
+    "landlock",
+    "landlock_net",
+    "landlock_scope",
+    "seccomp",
+)
+NOT_HERE = "off: a layer of the Linux kernel, which this system does not have"
+PARENT_CHECK_S = 0.2  # how often a brick without PDEATHSIG looks whether its simulator is still there
+# the real thread and sleep: a brick makes both virtual before it enters (boot.py imports this first)
+_real_start_new_thread = _thread.start_new_thread
+_real_sleep = time.sleep
+
+
+def _enter_elsewhere(policy: SandboxPolicy) -> dict:
+    """What a brick can put up from inside on a system without the Linux kernel's interfaces (macOS,
+    Windows): a session of its own that ends with its simulator, no inherited files, resource limits.
+    What the simulator adds from outside (a Job Object, sandbox-exec) it reports itself."""
+    report = dict.fromkeys(LINUX_LAYERS, NOT_HERE)
+    if hasattr(os, "getuid"):
+        report["root_dropped"] = (
+            "not root" if os.getuid() != 0 else "off: root is not given up on this system"
+        )
+    _session_elsewhere(report)
+    if hasattr(os, "fork"):  # (a new process on a system without fork inherits no files but 0, 1, 2)
+        _close_fds_except(policy.keep_fds)
+    _rlimits_elsewhere(policy, report)
+    _stay_inside(_real_paths(policy.read_paths) + _real_paths(policy.write_paths), policy.write_paths[0])
+    report["fds"] = f"on (kept 0, 1, 2{''.join(f', {fd}' for fd in sorted(policy.keep_fds))})"
+    return report
+
+
+def _session_elsewhere(report: dict) -> None:
+    """A session of its own (the simulator started the brick with one where the system has them), and
+    an end when the simulator ends: without PDEATHSIG, a thread looks every PARENT_CHECK_S whether the
+    parent is still the one that started it, and ends the brick's whole process group if not."""
+    if not hasattr(os, "setsid"):
+        report["session"] = (
+            "off: this system has no sessions (a Job Object ends the brick with its simulator)"
+        )
+        return
+    if os.getsid(0) != os.getpid():
+        try:
+            os.setsid()
+        except OSError as err:
+            report["session"] = f"off: setsid: {err.strerror}"
+            return
+    parent = os.getppid()
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            _real_sleep(PARENT_CHECK_S)
+        try:
+            os.killpg(0, signal.SIGKILL)
+        finally:
+            os._exit(_EXIT_SANDBOX_BROKEN)
+
+    _real_start_new_thread(watch, ())
+    report["session"] = f"on (ends within {PARENT_CHECK_S:g} s of its simulator)"
+
+
+def _rlimits_elsewhere(policy: SandboxPolicy, report: dict) -> None:
+    """The resource limits this system lets a process set on itself, each tried on its own."""
+    resource = _resource()
+    if resource is None:
+        report["rlimits"] = "off: this system has no resource limits (a Job Object sets them from outside)"
+        return
+    wanted = [
+        ("RLIMIT_CPU", (policy.cpu_s, policy.cpu_s + 1), f"cpu {policy.cpu_s} s"),
+        ("RLIMIT_FSIZE", (policy.file_mb * _MIB,) * 2, f"files {policy.file_mb} MB"),
+        ("RLIMIT_NOFILE", (policy.open_files,) * 2, f"{policy.open_files} open files"),
+        ("RLIMIT_CORE", (0, 0), "no core"),
+        (
+            "RLIMIT_AS",
+            (_address_space_bytes() + policy.memory_mb * _MIB,) * 2,
+            f"memory +{policy.memory_mb} MB",
+        ),
+    ]
+    done, missing = [], []
+    for name, (soft, hard), said in wanted:
+        which = getattr(resource, name, None)
+        try:
+            _, old_hard = resource.getrlimit(which)
+            if old_hard != resource.RLIM_INFINITY:
+                soft, hard = min(soft, old_hard), min(hard, old_hard)
+            resource.setrlimit(which, (soft, hard))
+            done.append(said)
+        except (TypeError, ValueError, OSError):  # no such limit here, or the system refuses it
+            missing.append(said.split(" +")[0].split(" ")[0])
+    if hasattr(signal, "SIGXFSZ"):
+        signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # a writer past the file limit must die
+    # RLIMIT_NPROC counts every process of the user here, and without /proc they cannot be counted
+    missing.append("processes")
+    report["rlimits"] = f"on ({', '.join(done)}; not limited here: {', '.join(missing)})"
 
 
 def _random_state():
@@ -433,6 +570,8 @@ def _real_paths(paths: list[str]) -> list[str]:
 
 
 def _own_session(report: dict) -> None:
+    import resource
+
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     if os.getsid(0) == os.getpid():
         report["session"] = "on (already a session leader)"
@@ -445,11 +584,35 @@ def _own_session(report: dict) -> None:
 
 
 def _close_fds_except(keep: list[int]) -> None:
+    """Close every fd above 2 but `keep`: those this process has open, where the system lists them
+    (/proc/self/fd, /dev/fd), else every number below the open-files limit."""
+    kept = {fd for fd in keep if fd >= 3}
+    listed = _open_fds()
+    if listed is not None:
+        for fd in sorted(set(listed) - kept):
+            if fd >= 3:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass  # the listing's own fd, gone already
+        return
+    resource = _resource()
+    top = resource.getrlimit(resource.RLIMIT_NOFILE)[0] if resource is not None else 8192
+    top = 65536 if top == getattr(resource, "RLIM_INFINITY", -1) or top > 1 << 20 else top
     start = 3
-    for fd in sorted({fd for fd in keep if fd >= 3}):
+    for fd in sorted(kept):
         os.closerange(start, fd)
         start = fd + 1
-    os.closerange(start, max(resource.getrlimit(resource.RLIMIT_NOFILE)[1], 65536))
+    os.closerange(start, max(top, start))
+
+
+def _open_fds() -> list[int] | None:
+    for folder in ("/proc/self/fd", "/dev/fd"):
+        try:
+            return [int(name) for name in os.listdir(folder) if name.isdigit()]
+        except OSError:
+            continue
+    return None
 
 
 # ---------------------------------------------------------------- namespaces
@@ -767,7 +930,7 @@ def _drop_capabilities(report: dict) -> None:
     _prctl(_PR_CAP_AMBIENT, _PR_CAP_AMBIENT_CLEAR_ALL)
     header = struct.pack("Ii", 0x20080522, 0)  # _LINUX_CAPABILITY_VERSION_3
     data = bytes(24)
-    if _libc.capset(header, data) != 0:
+    if _c_library().capset(header, data) != 0:
         err = ctypes.get_errno()
         raise SandboxError(f"capset: {os.strerror(err)}")
     left = _capget()
@@ -780,7 +943,7 @@ def _drop_capabilities(report: dict) -> None:
 def _capget() -> tuple[int, int, int]:
     header = ctypes.create_string_buffer(struct.pack("Ii", 0x20080522, 0))
     data = ctypes.create_string_buffer(24)
-    if _libc.capget(header, data) != 0:
+    if _c_library().capget(header, data) != 0:
         raise SandboxError(f"capget: {os.strerror(ctypes.get_errno())}")
     e0, p0, i0, e1, p1, i1 = struct.unpack("6I", data.raw)
     return e0 | e1 << 32, p0 | p1 << 32, i0 | i1 << 32
@@ -811,6 +974,8 @@ def _no_new_privs(report: dict) -> None:
 
 
 def _set_rlimits(policy: SandboxPolicy, tasks_already: int, report: dict) -> None:
+    import resource
+
     cpu = policy.cpu_s
     address_space = _address_space_bytes() + policy.memory_mb * _MIB
     processes = policy.processes + tasks_already
@@ -830,7 +995,7 @@ def _set_rlimits(policy: SandboxPolicy, tasks_already: int, report: dict) -> Non
     signal.signal(signal.SIGXFSZ, signal.SIG_DFL)  # Python ignores it: a writer past the limit must die
     # Each thread's own malloc arena would reserve 64 MB of address space: 7 threads would use
     # up the memory budget without touching it.  One arena; the GIL serialises Python anyway.
-    mallopt = getattr(_libc, "mallopt", None)
+    mallopt = getattr(_c_library(), "mallopt", None)
     if mallopt is not None:
         mallopt(ctypes.c_int(_M_ARENA_MAX), ctypes.c_int(1))
     report["rlimits"] = (
@@ -844,6 +1009,8 @@ def _address_space_bytes() -> int:
         with open("/proc/self/statm") as f:
             return int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
     except OSError:
+        import resource
+
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024 * 4
 
 
@@ -949,7 +1116,7 @@ def landlock_abi() -> tuple[int, str]:
     """(ABI version, "") or (0, why there is none)."""
     if _MACHINE_ALIASES.get(platform.machine(), platform.machine()) == "alpha":
         return 0, "Landlock's calls have other numbers on alpha"
-    result = _libc.syscall(
+    result = _c_library().syscall(
         ctypes.c_long(_LANDLOCK_CREATE_RULESET), None, ctypes.c_size_t(0), ctypes.c_uint32(1)
     )
     if result >= 0:
@@ -986,7 +1153,7 @@ def _seccomp(report: dict) -> None:
         return
     filters = ctypes.create_string_buffer(program)
     prog = _SockFprog(len(program) // 8, ctypes.addressof(filters))
-    result = _libc.prctl(
+    result = _c_library().prctl(
         ctypes.c_int(_PR_SET_SECCOMP), ctypes.c_ulong(_SECCOMP_MODE_FILTER), ctypes.byref(prog), 0, 0
     )
     if result != 0:
@@ -1041,9 +1208,12 @@ def probe() -> dict:
     """What this kernel offers a brick, without entering anything here: trials run in forked
     children.  Keys: kernel, machine, root, uid, landlock_abi, landlock, namespaces_as_root,
     user_ns, seccomp, no_new_privs, subreaper."""
+    if not linux_kernel():
+        return _probe_elsewhere()
     abi, why = landlock_abi()
     as_root = 0 in os.getresuid()
     info: dict = {
+        "linux": True,
         "kernel": os.uname().release,
         "machine": platform.machine(),
         "root": as_root,
@@ -1057,6 +1227,25 @@ def probe() -> dict:
         "subreaper": _trial(lambda: _prctl(36, 1)),  # PR_SET_CHILD_SUBREAPER, for the simulator
     }
     return info
+
+
+def _probe_elsewhere() -> dict:
+    """The same keys on a system without the Linux kernel's interfaces: none of its layers."""
+    return {
+        "linux": False,
+        "kernel": f"{platform.system()} {platform.release()}",
+        "machine": platform.machine(),
+        "root": hasattr(os, "getuid") and os.getuid() == 0,
+        "uid": os.getuid() if hasattr(os, "getuid") else None,
+        "landlock_abi": 0,
+        "landlock": NOT_HERE,
+        "namespaces_as_root": NOT_HERE,
+        "user_ns": NOT_HERE,
+        "seccomp": NOT_HERE,
+        "no_new_privs": NOT_HERE,
+        "subreaper": NOT_HERE,
+        "rlimits": "on" if _resource() is not None else "off: this system has no resource limits",
+    }
 
 
 def _trial(attempt) -> str:
@@ -1113,7 +1302,7 @@ def _try_seccomp() -> None:
 
 def _prctl_value(option: int, *args: int) -> int:
     values = [ctypes.c_ulong(a) for a in (*args, 0, 0, 0, 0)[:4]]
-    return _libc.prctl(ctypes.c_int(option), *values)
+    return _c_library().prctl(ctypes.c_int(option), *values)
 
 
 def _prctl(option: int, *args: int) -> int:
@@ -1125,7 +1314,7 @@ def _prctl(option: int, *args: int) -> int:
 
 
 def _unshare(flags: int) -> None:
-    if _libc.unshare(ctypes.c_int(flags)) != 0:
+    if _c_library().unshare(ctypes.c_int(flags)) != 0:
         err = ctypes.get_errno()
         raise OSError(err, os.strerror(err))
 
@@ -1134,14 +1323,14 @@ def _mount(source, target, fstype, flags, data=None) -> None:
     def c(text):
         return None if text is None else os.fsencode(text)
 
-    if _libc.mount(c(source), c(target), c(fstype), ctypes.c_ulong(flags), c(data)) != 0:
+    if _c_library().mount(c(source), c(target), c(fstype), ctypes.c_ulong(flags), c(data)) != 0:
         err = ctypes.get_errno()
         raise OSError(err, f"mount {target}: {os.strerror(err)}")
 
 
 def _syscall(number: int, *args) -> int:
     converted = [ctypes.c_long(a) if isinstance(a, int) else a for a in args]
-    result = _libc.syscall(ctypes.c_long(number), *converted)
+    result = _c_library().syscall(ctypes.c_long(number), *converted)
     if result < 0:
         err = ctypes.get_errno()
         raise OSError(err, f"syscall {number}: {os.strerror(err)}")

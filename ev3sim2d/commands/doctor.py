@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..brick import sandbox
+from ..simulator import job_object, sandbox_exec
 from .exit_codes import EXIT_OK, EXIT_PROGRAM_ERROR
 
 NAME = "doctor"
@@ -89,7 +90,24 @@ LAYERS = (
         "interfaces (io_uring, bpf, perf_event_open) that are common ways into the kernel",
     ),
     Layer("fds", "inherited files closed", "a program could use files the simulator had open"),
+    Layer(
+        "sandbox_exec",
+        "sandbox-exec: no network, writes only in scratch",
+        "a program reaches the network and writes wherever its user may write",
+    ),
+    Layer(
+        "job_object",
+        "Job Object: limits, ends with the simulator",
+        "what a program starts outlives the run, and its memory and processes are not limited together",
+    ),
 )
+OUTSIDE = ("sandbox_exec", "job_object")  # layers the simulator puts around a brick where the system has them
+GUARANTEES = {
+    "file confinement": "a program may read (and, without sandbox-exec, write) whatever its user may: "
+    "the lessons' hidden variants, classmates' programs",
+    "network": "a program may use the network",
+    "orphan clean-up": "what a program starts may outlive the run",
+}
 
 _TRIAL = """
 import json, sys
@@ -129,7 +147,7 @@ def trial_report() -> tuple[dict | None, str]:
             env=environment,
             cwd=scratch,
             timeout=60,
-            start_new_session=True,
+            **({"start_new_session": True} if hasattr(os, "setsid") else {}),
         )
     except subprocess.TimeoutExpired:
         return None, "the trial brick did not answer within 60 s"
@@ -142,8 +160,34 @@ def trial_report() -> tuple[dict | None, str]:
         return None, lines[-1] if lines else f"the trial brick ended with status {done.returncode}"
 
 
+def this_computer() -> dict:
+    """What a brick gets here: what the kernel offers (sandbox.probe()), and the layers the simulator
+    adds from outside where the system has them (sandbox-exec, a Job Object)."""
+    facts = sandbox.probe()
+    facts["sandbox_exec"] = sandbox_exec.describe()
+    facts["job_object"] = "on" if job_object.available() else "off: this system has no Job Objects"
+    return facts
+
+
+def _on(facts: dict, key: str) -> bool:
+    return str(facts.get(key, "")).startswith("on")
+
+
+def missing_guarantees(facts: dict) -> list[str]:
+    """What a class's programs are not kept from here (keys of GUARANTEES), from this_computer()."""
+    namespaces = _on(facts, "user_ns") or _on(facts, "namespaces_as_root")
+    missing = []
+    if not _on(facts, "landlock"):
+        missing.append("file confinement")
+    if not (namespaces or _on(facts, "seccomp") or _on(facts, "sandbox_exec")):
+        missing.append("network")
+    if not (namespaces or _on(facts, "subreaper") or _on(facts, "job_object")):
+        missing.append("orphan clean-up")
+    return missing
+
+
 def isolation_summary(facts: dict) -> str:
-    """One line: what isolation a brick gets here, from sandbox.probe()."""
+    """One line: what isolation a brick gets here, from this_computer() (or sandbox.probe())."""
     parts = [f"landlock ABI {facts['landlock_abi']}" if facts["landlock_abi"] else "no landlock"]
     namespaces = []
     if facts["user_ns"] == "on":
@@ -152,9 +196,25 @@ def isolation_summary(facts: dict) -> str:
         namespaces += ["mount", "net", "pid", "ipc"]
     parts.append(f"{'+'.join(namespaces)} namespaces" if namespaces else "no namespaces")
     parts.append("seccomp" if facts["seccomp"] == "on" else "no seccomp")
-    if facts["root"]:
+    if facts["root"] and facts.get("linux", True):
         parts.append("root given up for uid 65534")
+    if not facts.get("linux", True) and _on(facts, "rlimits"):
+        parts.append("resource limits")
+    if _on(facts, "sandbox_exec"):
+        parts.append("sandbox-exec (no network, writes only in the scratch folder)")
+    if _on(facts, "job_object"):
+        parts.append("a Job Object (memory, processes, CPU time; ends with the simulator)")
     return ", ".join(parts)
+
+
+def grading_isolation(facts: dict) -> dict:
+    """What a class's programs are kept from here, for grade's JSON and its one line."""
+    missing = missing_guarantees(facts)
+    return {
+        "computer": isolation_summary(facts),
+        "missing": missing,
+        "without": {name: GUARANTEES[name] for name in missing},
+    }
 
 
 class VersionAction(argparse.Action):
@@ -165,8 +225,14 @@ class VersionAction(argparse.Action):
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
     def __call__(self, parser, namespace, values, option_string=None):
+        facts = this_computer()
         print(f"ev3sim2d {version()}")
-        print(f"isolation: {isolation_summary(sandbox.probe())}")
+        print(f"isolation: {isolation_summary(facts)}")
+        missing = missing_guarantees(facts)
+        if missing:
+            print(
+                f"not here: {', '.join(missing)} (grade untrusted classes on Linux or in CI: docs/platforms.md)"
+            )
         parser.exit(EXIT_OK)
 
 
@@ -181,13 +247,23 @@ def version() -> str:
 
 
 def main(args) -> int:
-    facts = sandbox.probe()
+    facts = this_computer()
     report, why = trial_report()
+    if report is not None:
+        report.update({key: facts[key] for key in OUTSIDE})
     if args.json:
-        print(json.dumps({"probe": facts, "report": report, "error": why or None}, indent=2))
+        missing = missing_guarantees(facts)
+        print(
+            json.dumps({"probe": facts, "report": report, "missing": missing, "error": why or None}, indent=2)
+        )
         return EXIT_OK if report is not None else EXIT_PROGRAM_ERROR
-    user = "root (a brick gives it up for uid 65534)" if facts["root"] else f"uid {facts['uid']}"
-    print(f"ev3sim2d {version()} on Linux {facts['kernel']} ({facts['machine']}), as {user}")
+    linux = facts.get("linux", True)
+    if facts["root"]:
+        user = "root (a brick gives it up for uid 65534)" if linux else "root (a brick keeps it here)"
+    else:
+        user = f"uid {facts['uid']}" if facts["uid"] is not None else "an ordinary user"
+    kernel = f"Linux {facts['kernel']}" if linux else facts["kernel"]
+    print(f"ev3sim2d {version()} on {kernel} ({facts['machine']}), as {user}")
     print(f"isolation: {isolation_summary(facts)}")
     if report is None:
         print(f"ev3sim2d doctor: error: a brick could not enter its sandbox here: {why}", file=sys.stderr)
@@ -195,15 +271,25 @@ def main(args) -> int:
     print("a brick here gets:")
     off = 0
     width = max(len(layer.title) for layer in LAYERS)
+    elsewhere = []
     for layer in LAYERS:
         state = report.get(layer.key, "off: not reported")
+        if state == sandbox.NOT_HERE or (
+            layer.key in OUTSIDE and not _on(facts, layer.key) and "no " in state
+        ):
+            elsewhere.append(layer.title)  # a layer of another system: listed once, below
+            continue
         on = state.startswith("on") or state == "not root"
         off += not on
         print(f"  {'on ' if on else 'OFF'} {layer.title:<{width}}  {state}")
         if not on:
             print(f"      {'':<{width}}  without it: {layer.without}")
+    if elsewhere:
+        print(f"other systems' layers, not on this one: {', '.join(elsewhere)}")
     if off:
         print(f"{off} layer(s) off: programs still run, with less isolation (docs/grading-security.md)")
     else:
-        print("every layer is on")
+        print("every layer this system has is on")
+    for name in missing_guarantees(facts):
+        print(f"a class's programs get no {name} here: {GUARANTEES[name]} (docs/platforms.md)")
     return EXIT_OK

@@ -24,6 +24,7 @@ from ..grading.safe_text import one_line
 from ..grading.submission import DEFAULT_ENTRY, find_submissions
 from ..grading.worker import CheckError
 from ..world.source_error import WorldFileError
+from .doctor import grading_isolation, this_computer
 from .exit_codes import EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 
 NAME = "grade"
@@ -110,6 +111,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="exit with status 1 when a program (in a class: any one) scores below P%% (default: 100)",
     )
     parser.add_argument("--quiet", action="store_true", help="no progress lines while grading")
+    parser.add_argument(
+        "--require-sandbox",
+        action="store_true",
+        help="refuse to grade where programs would not get file confinement, network confinement and "
+        "clean-up of what they start (Windows and macOS: docs/platforms.md)",
+    )
 
 
 def main(args) -> int:
@@ -141,6 +148,20 @@ def _grade(args) -> int:
             "(a teacher adds the hidden ones with --hidden DIR)",
             file=sys.stderr,
         )
+    isolation = grading_isolation(this_computer())
+    if isolation["missing"]:
+        what = ", ".join(f"no {name}" for name in isolation["missing"])
+        if args.require_sandbox:
+            return fail(
+                f"--require-sandbox: a class's programs would get {what} on this computer; grade on Linux "
+                "or in CI (docs/platforms.md)"
+            )
+        if not args.quiet:
+            print(
+                f"ev3sim2d: on this computer a class's programs get {what}: fine for your own or trusted "
+                "programs; for a class you do not trust, grade on Linux or in CI (docs/platforms.md)",
+                file=sys.stderr,
+            )
     submissions = find_submissions(args.programs, args.entry)
     if not submissions:
         return fail("no programs to grade")
@@ -173,7 +194,16 @@ def _grade(args) -> int:
             failed_runs.append((submission.name, variant.name, kept))
 
     try:
-        grading = grade(lesson, submissions, args.jobs, args.json, args.regrade, progress, on_failed_run)
+        grading = grade(
+            lesson,
+            submissions,
+            args.jobs,
+            args.json,
+            args.regrade,
+            progress,
+            on_failed_run,
+            isolation=isolation,
+        )
         if args.videos:
             _keep_failed_runs(Path(args.videos), failed_runs, args.quiet)
     except CheckError as err:  # a bug in a check, most likely in the lesson's check_*.py

@@ -26,7 +26,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..simulator.bricks import become_subreaper, compile_brick_code, kill_orphans
+from ..simulator.bricks import become_subreaper, compile_brick_code, kill_orphans, portable
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -46,6 +46,7 @@ class Grading:
     results: list[SubmissionResult]
     reused: int = 0  # results taken over from an earlier run
     wall_s: float = 0.0
+    isolation: dict | None = None  # what the programs were kept from on this computer (doctor.py)
 
 
 @dataclass
@@ -95,7 +96,7 @@ def _wait_for_one(pids: list[int], timeout_s: float) -> None:
 def _start_zygote():
     """The class run's brick zygote (simulator/zygote.py), or None where there can be none: each brick is
     then started afresh."""
-    if not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"):
+    if portable() or not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"):
         return None
     from ..simulator.zygote import BrickZygote
 
@@ -110,7 +111,12 @@ def default_jobs() -> int:
 
 
 def can_fork() -> bool:
-    return hasattr(os, "fork")
+    """Whether workers may be forked from the grader: where Python itself forks by default (not where
+    a forked child of a process that loaded the system's libraries may crash, as on macOS, whose
+    default is spawn), and not on the portable path (EV3SIM2D_PORTABLE=1), which spawns as Windows must."""
+    import multiprocessing
+
+    return hasattr(os, "fork") and not portable() and multiprocessing.get_all_start_methods()[0] != "spawn"
 
 
 def variant_result_of(lesson: Lesson, variant_index: int, outcome: JobOutcome) -> VariantResult:
@@ -139,16 +145,20 @@ def load_results(path: Path, lesson: Lesson) -> dict[str, SubmissionResult]:
     return found
 
 
-def results_document(lesson: Lesson, results: list[SubmissionResult]) -> dict:
-    """The JSON results file: the lesson, and per submission its score, status, variants and checks."""
-    return {
+def results_document(lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None) -> dict:
+    """The JSON results file: the lesson, what the programs were kept from on this computer, and per
+    submission its score, status, variants and checks."""
+    document = {
         "format": RESULTS_FORMAT,
         "lesson": lesson.id,
         "title": lesson.title,
         "max_score": lesson.max_score,
         "variants": [_variant_entry(v) for v in lesson.variants],
-        "submissions": [r.to_dict() for r in results],
     }
+    if isolation is not None:
+        document["isolation"] = isolation
+    document["submissions"] = [r.to_dict() for r in results]
+    return document
 
 
 def _variant_entry(variant: Variant) -> dict:
@@ -158,11 +168,14 @@ def _variant_entry(variant: Variant) -> dict:
     return {"name": variant.name, "hidden": False, "world": variant.world().name}
 
 
-def write_results(path: Path, lesson: Lesson, results: list[SubmissionResult]) -> None:
+def write_results(
+    path: Path, lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None
+) -> None:
     """Write the results file atomically (a reader never sees half a file)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     part = path.with_name(path.name + ".part")
-    part.write_text(json.dumps(results_document(lesson, results), indent=2) + "\n", encoding="utf-8")
+    document = results_document(lesson, results, isolation)
+    part.write_text(json.dumps(document, indent=2) + "\n", encoding="utf-8")
     os.replace(part, path)
 
 
@@ -198,11 +211,13 @@ def grade(
     on_result: Callable[[SubmissionResult], None] | None = None,
     on_failed_run: Callable[[Submission, int, Path], None] | None = None,
     use_fork: bool | None = None,
+    isolation: dict | None = None,
 ) -> Grading:
     """Grade every submission in every variant of the lesson; see the module docstring.
 
     `on_failed_run(submission, variant_index, trace_path)` is called (before the trace is deleted) for each
-    run that did not pass every check, e.g. to keep its trace or render a video.
+    run that did not pass every check, e.g. to keep its trace or render a video.  `isolation` (what the
+    programs are kept from on this computer) goes into the results file as it is.
     """
     started = time.monotonic()
     become_subreaper()  # a brick's orphans come back here, and are ended (kill_orphans)
@@ -224,7 +239,7 @@ def grade(
     def finish(index: int, result: SubmissionResult) -> None:
         done[index] = result
         if results_file is not None:
-            write_results(results_file, lesson, [done[i] for i in sorted(done)])
+            write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation)
         if on_result is not None:
             on_result(result)
 
@@ -272,7 +287,7 @@ def grade(
                 )
             )
     if results_file is not None and (done or not submissions):
-        write_results(results_file, lesson, [done[i] for i in sorted(done)])
+        write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation)
     for index in sorted(done):
         if on_result is not None:
             on_result(done[index])
@@ -319,4 +334,4 @@ def grade(
             zygote.close()
         kill_orphans(everything=True)
         shutil.rmtree(workdir, ignore_errors=True)
-    return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started)
+    return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started, isolation)

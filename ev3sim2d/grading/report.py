@@ -111,7 +111,7 @@ def details(result: SubmissionResult) -> str:
 
 
 def write_json(path: str | Path, grading: Grading) -> None:
-    write_results(Path(path), grading.lesson, grading.results)
+    write_results(Path(path), grading.lesson, grading.results, grading.isolation)
 
 
 def _check_text(variant: VariantResult, check) -> str:

@@ -366,7 +366,7 @@ def start_job(job: Job, lesson, use_fork: bool, zygote=None) -> RunningJob:
     job_file = Path(job.folder) / "job.json"
     job_file.write_text(json.dumps(asdict(job)), encoding="utf-8")
     options: dict = {"stdin": subprocess.DEVNULL, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
-    if os.name == "posix":
+    if hasattr(os, "setsid"):
         options["start_new_session"] = True
     else:
         options["creationflags"] = getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0)

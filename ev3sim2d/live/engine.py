@@ -284,7 +284,7 @@ class LiveRun:
         for i, path in enumerate(self.programs):
             real = path.resolve()
             self._shown.append((str(path), str(real)))
-            brick, read_paths = start_brick([real.parent], spin=False)
+            brick, read_paths = start_brick([real.parent], spin=False, limits=limits)
             self._bricks.append(brick)
             brick.channel.send(
                 brick_welcome(brick, read_paths, real, names[i], sim.tick_us, self.seed, limits)

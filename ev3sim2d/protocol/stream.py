@@ -16,7 +16,7 @@ import time
 from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode, encode
 
 _perf_counter = time.perf_counter  # the real clock, whatever a program does to `time` later
-_DONTWAIT = getattr(socket, "MSG_DONTWAIT", 0)
+_DONTWAIT = getattr(socket, "MSG_DONTWAIT", None)  # None: not on this system (Windows): select first
 _CORES = os.cpu_count() or 1
 _load = {"checked": -1.0, "idle": True}
 _deferred_wakes: list = []  # channels whose reader may sleep and has not been woken yet
@@ -49,7 +49,7 @@ def cores_idle() -> bool:
         except (OSError, ValueError, IndexError):
             try:
                 _load["idle"] = os.getloadavg()[0] < _CORES - 0.5
-            except OSError:
+            except (OSError, AttributeError):  # (no load average on Windows)
                 _load["idle"] = True
     return _load["idle"]
 
@@ -59,7 +59,7 @@ class Channel:
 
     def __init__(self, sock: socket.socket, spin_s: float = 0.002) -> None:
         self.sock = sock
-        self.spin_s = spin_s if _DONTWAIT else 0.0
+        self.spin_s = spin_s if _DONTWAIT is not None else 0.0
         self._buffer = bytearray()
         self._start = 0
         self.closed = False
@@ -86,7 +86,7 @@ class Channel:
         message = self._take()
         if message is not None:
             return message
-        while self._fill(_DONTWAIT):
+        while self._fill_now():
             message = self._take()
             if message is not None:
                 return message
@@ -100,7 +100,7 @@ class Channel:
         if self.spin_s and cores_idle():
             end = _perf_counter() + self.spin_s
             while True:
-                if self._fill(_DONTWAIT):
+                if self._fill_now():
                     message = self._take()
                     if message is not None:
                         return message
@@ -129,6 +129,13 @@ class Channel:
         self._buffer += data
         self.bytes_in += len(data)
         return True
+
+    def _fill_now(self) -> bool:
+        """Read what the socket has now, never waiting; False if nothing."""
+        if _DONTWAIT is not None:
+            return self._fill(_DONTWAIT)
+        ready, _, _ = select.select([self.sock], [], [], 0)
+        return bool(ready) and self._fill(0)
 
     def _recv(self, size: int, flags: int) -> bytes | None:
         """Bytes from the socket, None if none are there yet; ConnectionGone once the other side is."""

@@ -9,10 +9,16 @@ hidden variants' location, PYTHONHASHSEED=random) reaches the program.  The
 brick puts itself in its sandbox (ev3sim2d/brick/sandbox.py) before it reads
 the program; the simulator tells it what it may read.
 
+Where a socket cannot be handed to a new process (no fork, no Unix socket pair: Windows), or
+where EV3SIM2D_PORTABLE=1 asks for it (to test that way on Linux), the brick connects over
+loopback TCP instead and proves itself with a one-time token (protocol/loopback.py); there is
+no shared memory and no zygote then.  What the system offers from outside is added where it
+exists: a Job Object (Windows: job_object.py) and sandbox-exec (macOS: sandbox_exec.py).
+
 At the end the brick is killed with everything it started: its own PID
 namespace ends with it; where the kernel gives none, the simulator, a child
 subreaper (PR_SET_CHILD_SUBREAPER), inherits the orphans a program left and
-kills them (`kill_orphans`).
+kills them (`kill_orphans`); on Windows, closing its Job Object ends every process in it.
 """
 
 from __future__ import annotations
@@ -29,12 +35,14 @@ import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..protocol import PROTOCOL, Channel, SharedChannel
+from ..protocol.loopback import LoopbackListener
 from ..protocol.shared_memory import available as shared_memory_available
 from ..protocol.shared_memory import create_memory
+from . import job_object, sandbox_exec
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
@@ -42,7 +50,10 @@ PR_SET_CHILD_SUBREAPER = 36
 CONSOLE_FILE = "console.log"
 KEEP_CONSOLE_BYTES = 4000
 UNPRIVILEGED_UID = 65534
+PYTHON_P = ["-P"] if sys.version_info >= (3, 11) else []  # (boot.py takes its own folder off sys.path too)
 SPIN_S = 0.002  # how long a side spins before it sleeps: waking a sleeper costs about 100 us here
+START_TIMEOUT_S = 60.0  # a brick on loopback TCP must connect within this much real time
+PORTABLE = "EV3SIM2D_PORTABLE"
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
 _brick_sessions: set[int] = set()  # the sessions of every brick this process started (each leads its own)
@@ -59,6 +70,12 @@ class BrickLimits:
     processes: int = 64
 
 
+def portable() -> bool:
+    """Whether bricks start as they must where a socket cannot be handed to a new process (no fork,
+    no Unix socket pair), or as EV3SIM2D_PORTABLE=1 asks: over loopback TCP, without shared memory."""
+    return os.environ.get(PORTABLE) == "1" or not (hasattr(os, "fork") and hasattr(socket, "AF_UNIX"))
+
+
 @dataclass
 class BrickProcess:
     """A running brick: its process, the simulator's end of its connection, its scratch folder."""
@@ -68,6 +85,8 @@ class BrickProcess:
     scratch: Path
     console: Path
     console_text: str = ""  # the end of the brick's console, read when it is stopped
+    job: job_object.JobObject | None = None  # (Windows) the Job Object every process of the brick is in
+    outside: dict = field(default_factory=dict)  # isolation layers put around it from outside: name -> state
 
     def stop(self, patience_s: float = 0.0) -> None:
         """Kill the brick and everything it started, reap it, remove its scratch folder.
@@ -77,14 +96,17 @@ class BrickProcess:
         self.channel.close()
         if patience_s > 0:
             _wait_for_exit(self.popen, patience_s)
-        try:
-            os.killpg(self.popen.pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError, OSError):
-            pass
+        if hasattr(os, "killpg"):
+            try:
+                os.killpg(self.popen.pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError, OSError):
+                pass
         try:
             self.popen.kill()
         except OSError:
             pass
+        if self.job is not None:
+            self.job.close()  # every process the brick started ends with it
         try:
             self.popen.wait(timeout=10)
         except subprocess.TimeoutExpired:
@@ -92,7 +114,7 @@ class BrickProcess:
         _running.discard(self.popen.pid)
         kill_orphans()
         self.console_text = console_tail(self.console)
-        shutil.rmtree(self.scratch, ignore_errors=True)
+        _remove(self.scratch)
 
     def ended_by_signal(self) -> str | None:
         code = self.popen.returncode
@@ -102,6 +124,24 @@ class BrickProcess:
             except ValueError:
                 return f"signal {-code}"
         return None
+
+    def limit_at_end(self) -> str | None:
+        """The limit the brick was ended at from outside, where the system says so by its exit code (a
+        Job Object's CPU time: "cpu"), else None."""
+        if self.job is not None and self.popen.returncode == job_object.CPU_LIMIT_EXIT_CODE:
+            return "cpu"
+        return None
+
+
+def _remove(folder: Path, patience_s: float = 2.0) -> None:
+    """Remove a scratch folder; where files of a process still ending cannot be removed yet (Windows),
+    try again for a while."""
+    end = time.monotonic() + patience_s
+    while True:
+        shutil.rmtree(folder, ignore_errors=True)
+        if not folder.exists() or time.monotonic() > end:
+            return
+        time.sleep(0.05)
 
 
 def _wait_for_exit(popen: subprocess.Popen, timeout_s: float) -> None:
@@ -163,7 +203,7 @@ def become_subreaper() -> bool:
     try:
         libc = ctypes.CDLL(None, use_errno=True)
         done = libc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):  # (TypeError: no C library by that name: Windows)
         return False
     if done and _subreaper_since is None:
         _subreaper_since = _boot_ticks_now()
@@ -180,7 +220,7 @@ def _is_subreaper() -> bool:
         libc = ctypes.CDLL(None, use_errno=True)
         value = ctypes.c_int(0)
         return libc.prctl(37, ctypes.byref(value), 0, 0, 0) == 0 and value.value == 1
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):
         return False
 
 
@@ -226,8 +266,10 @@ def kill_orphans(keep: set[int] | frozenset = frozenset(), everything: bool = Fa
 
 
 def brick_environment(scratch: Path) -> dict[str, str]:
-    """The whole environment a brick gets: the same on every machine, no secrets of the caller's."""
-    return {
+    """The whole environment a brick gets: the same on every machine, no secrets of the caller's.
+    Where the system needs its own folder to start a process that uses sockets (Windows' SYSTEMROOT),
+    that is passed on, and its temporary folder is the scratch folder."""
+    environment = {
         "PATH": "/usr/local/bin:/usr/bin:/bin",
         "HOME": str(scratch),
         "TMPDIR": str(scratch),
@@ -236,10 +278,19 @@ def brick_environment(scratch: Path) -> dict[str, str]:
         "TZ": "UTC",
         "PYTHONHASHSEED": "0",
         "PYTHONIOENCODING": "utf-8",
+        "PYTHONUTF8": "1",  # files opened without an encoding are UTF-8, as on the EV3, on every system
         "PYTHONDONTWRITEBYTECODE": "1",
         "OPENBLAS_NUM_THREADS": "1",  # numpy's BLAS: one thread, in the brick's share of the machine
         "OMP_NUM_THREADS": "1",
     }
+    system_root = os.environ.get("SYSTEMROOT")
+    if system_root:
+        system32 = os.path.join(system_root, "System32")
+        environment.update(
+            SYSTEMROOT=system_root, TEMP=str(scratch), TMP=str(scratch), USERPROFILE=str(scratch)
+        )
+        environment["PATH"] = os.pathsep.join([os.path.dirname(sys.executable), system32, system_root])
+    return environment
 
 
 def start_brick(
@@ -248,6 +299,7 @@ def start_brick(
     scratch_in: Path | None = None,
     spin: bool = True,
     zygote=None,
+    limits: BrickLimits | None = None,
 ) -> tuple[BrickProcess, list[str]]:
     """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's).
 
@@ -255,46 +307,116 @@ def start_brick(
     folder); a grading worker uses its job folder, which the grader removes even if the worker is
     killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
     share the machine's cores: see protocol/shared_memory.py).  zygote: a BrickZygote to fork the brick
-    from (zygote.py); a fresh process when it is None or gone."""
+    from (zygote.py); a fresh process when it is None or gone.  limits: what a Job Object (where the
+    system has them) holds the brick's processes to, together; the brick sets its own limits too."""
     compile_brick_code()
+    limits = limits or BrickLimits()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
-    if os.geteuid() == 0:
+    if hasattr(os, "geteuid") and os.geteuid() == 0:
         os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes
         if scratch_in is not None:
             _let_through(Path(scratch_in))
     console = scratch / CONSOLE_FILE
+    with open(console, "wb") as out:
+        if portable():
+            brick = _start_over_loopback(scratch, console, out, spin, limits)
+        else:
+            brick = _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote)
+    _running.add(brick.popen.pid)
+    _brick_sessions.add(brick.popen.pid)
+    read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
+    return brick, read_paths
+
+
+def _boot_argv(*arguments: str, scratch: Path) -> list[str]:
+    """The brick's command line: the interpreter, our flags, boot.py; under sandbox-exec where it exists.
+    Where bricks go in a Job Object (Windows), a virtual environment's python is a launcher that starts
+    the real interpreter as a child of its own, which could escape the job: the real one is started."""
+    interpreter = sys.executable
+    if job_object.available():
+        interpreter = getattr(sys, "_base_executable", None) or sys.executable
+    argv = [interpreter, "-s", "-S", "-B", *PYTHON_P, str(BOOT), *arguments]
+    return sandbox_exec.wrap(argv, [str(scratch)])
+
+
+def _outside_layers(job: job_object.JobObject | None) -> dict:
+    layers = {}
+    if os.access(sandbox_exec.SANDBOX_EXEC, os.X_OK):  # (on, or off with the reason it refused)
+        layers["sandbox_exec"] = sandbox_exec.describe()
+    if job is not None:
+        layers["job_object"] = job.describe()
+    return layers
+
+
+def _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote) -> BrickProcess:
+    """A brick given one end of a socket pair (and shared memory, where there is some) as inherited fds."""
     ours, theirs = socket.socketpair()
     memory_fd = create_memory() if shared_memory and shared_memory_available() else -1
     passed = [theirs.fileno()] + ([memory_fd] if memory_fd >= 0 else [])
-    argv = [sys.executable, "-s", "-S", "-B", "-P", str(BOOT), str(theirs.fileno()), str(memory_fd)]
-    with open(console, "wb") as out:
-        popen = None
-        if zygote is not None:
-            try:
-                popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, out.fileno())
-            except RuntimeError:  # ZygoteGone
-                popen = None
-        if popen is None:
-            popen = subprocess.Popen(
-                [*argv, str(PACKAGE_DIR.parent)],
-                stdin=subprocess.DEVNULL,
-                stdout=out,
-                stderr=out,
-                cwd=scratch,
-                env=brick_environment(scratch),
-                pass_fds=passed,
-                start_new_session=True,
-            )
+    popen = None
+    if zygote is not None:
+        try:
+            popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, out.fileno())
+        except RuntimeError:  # ZygoteGone
+            popen = None
+    if popen is None:
+        popen = subprocess.Popen(
+            _boot_argv(str(theirs.fileno()), str(memory_fd), str(PACKAGE_DIR.parent), scratch=scratch),
+            stdin=subprocess.DEVNULL,
+            stdout=out,
+            stderr=out,
+            cwd=scratch,
+            env=brick_environment(scratch),
+            pass_fds=passed,
+            start_new_session=True,
+        )
     theirs.close()
-    _running.add(popen.pid)
-    _brick_sessions.add(popen.pid)
     if memory_fd >= 0:
         channel = SharedChannel(ours, os.dup(memory_fd), simulator=True, spin_s=SPIN_S if spin else 0.0)
         os.close(memory_fd)
     else:
         channel = Channel(ours, spin_s=SPIN_S if spin else 0.0)
-    read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
-    return BrickProcess(popen, channel, scratch, console), read_paths
+    return BrickProcess(popen, channel, scratch, console, outside=_outside_layers(None))
+
+
+def _start_over_loopback(scratch, console, out, spin, limits: BrickLimits) -> BrickProcess:
+    """A brick that connects back over loopback TCP with the token it reads from its standard input,
+    in a Job Object where the system has them (assigned before it hears a word from the simulator)."""
+    listener = LoopbackListener()
+    try:
+        options: dict = {"start_new_session": True} if hasattr(os, "setsid") else {}
+        popen = subprocess.Popen(
+            _boot_argv("tcp", str(listener.port), str(PACKAGE_DIR.parent), scratch=scratch),
+            stdin=subprocess.PIPE,
+            stdout=out,
+            stderr=out,
+            cwd=scratch,
+            env=brick_environment(scratch),
+            **options,
+        )
+        job, outside = None, {}
+        if job_object.available():
+            try:
+                job = job_object.JobObject(limits.memory_mb, limits.processes, limits.cpu_s)
+                job.assign(popen)
+            except OSError as err:
+                if job is not None:
+                    job.close()
+                job, outside = None, {"job_object": f"off: {err}"}
+        try:
+            popen.stdin.write(listener.token.encode() + b"\n")
+            popen.stdin.close()
+        except OSError:
+            pass  # it ended already: its console says why
+        channel = listener.accept(START_TIMEOUT_S, lambda: popen.poll() is None, SPIN_S if spin else 0.0)
+    finally:
+        listener.close()
+    if channel is None:  # it never connected: a channel that is gone, so the run says the brick did not start
+        ours, theirs = socket.socketpair()
+        theirs.close()
+        channel = Channel(ours)
+    outside.update(_outside_layers(job))
+    return BrickProcess(popen, channel, scratch, console, job=job, outside=outside)
 
 
 def brick_welcome(
@@ -308,7 +430,8 @@ def brick_welcome(
     sandbox: bool = True,
 ) -> list:
     """The welcome a brick started here gets: its robot's name, the clock, the seed, its program, and
-    the sandbox it must enter (what it may read and write, its limits; None: no sandbox)."""
+    the sandbox it must enter (what it may read and write, its limits; None: no sandbox).  Paths go as
+    the brick names them (bricks_path)."""
     return [
         "welcome",
         {
@@ -316,13 +439,13 @@ def brick_welcome(
             "robot": robot,
             "tick_us": tick_us,
             "seed": seed,
-            "program": str(program),
-            "program_dirs": [str(program.parent)],
-            "shim_root": str(shim_root()),
-            "site_packages": site_packages(),
+            "program": bricks_path(program),
+            "program_dirs": [bricks_path(program.parent)],
+            "shim_root": bricks_path(shim_root()),
+            "site_packages": [bricks_path(p) for p in site_packages()],
             "sandbox": {
-                "read_paths": read_paths,
-                "write_paths": [str(brick.scratch)],
+                "read_paths": [bricks_path(p) for p in read_paths],
+                "write_paths": [bricks_path(brick.scratch)],
                 "cpu_s": limits.cpu_s,
                 "memory_mb": limits.memory_mb,
                 "file_mb": limits.file_mb,
@@ -332,6 +455,22 @@ def brick_welcome(
             else None,
         },
     ]
+
+
+def bricks_path(path: str | Path) -> str:
+    """A path as the brick names it: the brick's file names are UTF-8 (brick_environment), this
+    process's may not be (LC_ALL=C makes them ASCII, with the other bytes as surrogates), so the path
+    goes as the bytes the system knows it by, read as UTF-8.  A name that is not UTF-8 at all cannot
+    be sent as text: ProgramError says which and what to do."""
+    from .program import ProgramError
+
+    text = os.fsencode(path).decode("utf-8", "surrogateescape")
+    if any("\udc80" <= ch <= "\udcff" for ch in text):
+        raise ProgramError(
+            f"{os.fsdecode(path)!r}: this file or folder name is not UTF-8 text; rename it with letters the "
+            "system shows (e.g. save it again from the editor)"
+        )
+    return text
 
 
 def _let_through(folder: Path) -> None:

@@ -14,6 +14,7 @@ comers away.
 
 from __future__ import annotations
 
+import errno
 import hmac
 import select
 import socket
@@ -78,12 +79,18 @@ class Lobby:
         """Listen; the address and port (port 0 asks the system for a free one)."""
         family = socket.AF_INET6 if ":" in self.host else socket.AF_INET
         listener = socket.socket(family, socket.SOCK_STREAM)
-        listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        # POSIX: take the port at once after an earlier world's connections; Windows' SO_REUSEADDR would
+        # let another program take a port in use, so there the port is bound exclusively instead
+        exclusive = getattr(socket, "SO_EXCLUSIVEADDRUSE", None)
+        if exclusive is not None:
+            listener.setsockopt(socket.SOL_SOCKET, exclusive, 1)
+        else:
+            listener.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         try:
             listener.bind((self.host, self.port))
         except OSError as err:
             listener.close()
-            if err.errno in (98, 48):  # EADDRINUSE (Linux, macOS)
+            if err.errno in (errno.EADDRINUSE, getattr(errno, "WSAEADDRINUSE", errno.EADDRINUSE)):
                 raise AddressInUse(
                     f"port {self.port} on {self.host} is in use (another world served here?): "
                     f"choose another with --port"
@@ -162,8 +169,9 @@ class Lobby:
             elif guest.greeting is not None and _ended(guest):
                 guest.finished = True  # its program ended before the run: the robot keeps it, and stays
             else:
-                self._drop(guest, "it went away before the run started; robot "
-                           f"{guest.seat + 1} is free again")
+                self._drop(
+                    guest, f"it went away before the run started; robot {guest.seat + 1} is free again"
+                )
         except ProtocolError as err:
             self._drop(guest, f"it does not speak ev3sim2d's protocol ({err})")
 
@@ -266,7 +274,13 @@ class Lobby:
 
 def send_timeout(sock: socket.socket, seconds: float) -> None:
     """Sending fails (and so drops the connection) when the other side takes no data for this long; the
-    kernel's timeout, which leaves reads alone."""
+    kernel's timeout, which leaves reads alone.  Windows takes it as a DWORD of milliseconds, POSIX
+    systems as a struct timeval, which refuse the shorter form: so the DWORD is tried first."""
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDTIMEO, max(1, int(seconds * 1000)))
+        return
+    except OSError:
+        pass
     whole = int(seconds)
     sock.setsockopt(
         socket.SOL_SOCKET, socket.SO_SNDTIMEO, struct.pack("ll", whole, int((seconds - whole) * 1e6))
@@ -303,7 +317,7 @@ def _close(sock: socket.socket) -> None:
     try:
         sock.setblocking(False)
         for _ in range(16):
-            if not sock.recv(1 << 16, socket.MSG_DONTWAIT):
+            if not sock.recv(1 << 16):  # (non-blocking: BlockingIOError, an OSError, once nothing is left)
                 break
     except OSError:
         pass

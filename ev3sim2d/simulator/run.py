@@ -12,6 +12,7 @@ and no process of the run is left behind.
 from __future__ import annotations
 
 import gc
+import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -164,7 +165,9 @@ def run_programs(
         for i, program in enumerate(loaded):
             path = program.path.resolve()
             may_read = readable[i] if readable else [path.parent]
-            brick, read_paths = start_brick(list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote)
+            brick, read_paths = start_brick(
+                list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote, limits=limits
+            )
             bricks.append(brick)
             brick_seed = seed if program_seed is None else program_seed
             brick.channel.send(
@@ -243,9 +246,14 @@ def program_error(port: BrickPort, shown: str, real: str) -> dict | None:
     if how.get("status") != "error" or not isinstance(error, dict):
         return None
 
+    real_dir = os.path.join(os.path.dirname(real), "")  # its folder: the modules beside it, as named too
+    shown_dir = os.path.join(os.path.dirname(shown), "") if os.path.dirname(shown) else ""
+
     def text(key: str, limit: int = 20_000) -> str:
         value = error.get(key)
-        return str(value)[:limit].replace(real, shown) if value is not None else ""
+        return (
+            str(value)[:limit].replace(real, shown).replace(real_dir, shown_dir) if value is not None else ""
+        )
 
     line = error.get("line")
     report = {
@@ -272,6 +280,9 @@ def _crash(port: BrickPort, brick: BrickProcess | None) -> tuple[str, str | None
     console = brick.console_text
     if name in LIMIT_SIGNALS:
         return LIMIT_SIGNALS[name], LIMIT_SIGNALS[name]
+    limit = brick.limit_at_end()
+    if limit is not None:
+        return limit, limit
     if "MemoryError" in console:
         return "memory", "memory"
     if name in CRASH_SIGNALS:
@@ -369,7 +380,10 @@ def run_result(
         "dropped_events": sum(port.dropped_events for port in ports),
         "limit": limit,
     }
-    sandbox = [dict((port.hello or {}).get("sandbox") or {}) for port in ports]
+    sandbox = [
+        {**((port.hello or {}).get("sandbox") or {}), **(brick.outside if brick is not None else {})}
+        for port, brick in zip(ports, bricks, strict=False)
+    ]
     robots = [
         {"robot": port.robot.name, "status": own["status"], "reason": own["reason"]}
         for port, (own, _) in zip(ports, ends, strict=False)

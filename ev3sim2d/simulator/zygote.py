@@ -25,7 +25,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from .bricks import BOOT, PACKAGE_DIR, _running, brick_environment, shim_root, site_packages
+from .bricks import BOOT, PACKAGE_DIR, PYTHON_P, _running, brick_environment, shim_root, site_packages
 
 START_TIMEOUT_S = 30.0
 
@@ -80,7 +80,7 @@ class BrickZygote:
 
     def __init__(self) -> None:
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
-        argv = [sys.executable, "-s", "-S", "-B", "-P", str(BOOT), "zygote", str(theirs.fileno())]
+        argv = [sys.executable, "-s", "-S", "-B", *PYTHON_P, str(BOOT), "zygote", str(theirs.fileno())]
         argv += [str(PACKAGE_DIR.parent), str(shim_root()), json.dumps(site_packages())]
         self.popen = subprocess.Popen(
             argv,

@@ -189,10 +189,13 @@ class World:
                 for row in range(self.grid.height)
             ]
             written = list(base.written_regions)
-            added = [
-                (name, list(r.rects)) for name, r in self.regions.items() if name not in base.regions
-            ]
+            added = [(name, list(r.rects)) for name, r in self.regions.items() if name not in base.regions]
             edited = EditedWorld(self.grid.cell_cm, cells, list(self.starts), written + added)
             text = write_maze_text(base, edited)
         again = read_maze(text, path)
-        self.text, self.grid, self.regions, self.starts = text, again["grid"], again["regions"], again["starts"]
+        self.text, self.grid, self.regions, self.starts = (
+            text,
+            again["grid"],
+            again["regions"],
+            again["starts"],
+        )
