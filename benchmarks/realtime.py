@@ -8,7 +8,9 @@
     program, brick, protocol, simulator and world;
 (c) the same program in the brick process without the sandbox (what the sandbox costs);
 (d) the same program run the way ev3sim2d ran it before bricks existed, in the simulator's own
-    process (the code of commit old_code.IN_PROCESS_COMMIT, taken from git), for the ratio (b)/(d).
+    process (the code of commit old_code.IN_PROCESS_COMMIT, taken from git), for the ratio (b)/(d);
+(e) the same program in its sandboxed brick on the portable path (EV3SIM2D_PORTABLE=1: the brick
+    connects over loopback TCP, as on Windows, with no shared memory), for the ratio (e)/(b).
 
 Target: (b) at least 300x real time.  Each figure is the best of --repeat runs; the machine is
 shared, so the figures move with its load: compare the ratios of one run.
@@ -27,6 +29,7 @@ from pathlib import Path
 
 from old_code import old_code
 
+from ev3sim2d.simulator.bricks import PORTABLE
 from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.simulator.simulation import Simulation
 from ev3sim2d.world.maze_file import find_maze, load_maze
@@ -71,9 +74,17 @@ def world_alone(world, seconds: float) -> float:
     return seconds / (time.perf_counter() - start)
 
 
-def line_follower(world, seconds: float, sandbox: bool = True) -> float:
+def line_follower(world, seconds: float, sandbox: bool = True, portable: bool = False) -> float:
     """Real-time factor of the shim line follower in its brick (simulation wall time, not start-up)."""
-    result = run_programs([FOLLOWER], world, time_limit_s=seconds, sandbox=sandbox)
+    previous = os.environ.get(PORTABLE)
+    os.environ[PORTABLE] = "1" if portable else "0"
+    try:
+        result = run_programs([FOLLOWER], world, time_limit_s=seconds, sandbox=sandbox)
+    finally:
+        if previous is None:
+            del os.environ[PORTABLE]
+        else:
+            os.environ[PORTABLE] = previous
     assert result.status == "time_limit", result.reason
     return result.sim_time_s / result.wall_time_s
 
@@ -105,14 +116,15 @@ def main() -> None:
     b = max(line_follower(world, args.seconds) for _ in range(args.repeat))
     c = max(line_follower(world, args.seconds, sandbox=False) for _ in range(args.repeat))
     d = in_process(args.seconds, args.repeat)
+    e = max(line_follower(world, args.seconds, portable=True) for _ in range(args.repeat))
     print(f"(a) world alone, 4 sensors read every tick:          {a:7.0f}x real time")
     print(f"(b) line follower in its sandboxed brick process:     {b:7.0f}x real time")
     print(f"(c) line follower in its brick, no sandbox:            {c:7.0f}x real time")
     if d is not None:
         print(f"(d) line follower in the simulator's process (old):    {d:7.0f}x real time")
-        print(f"(b)/(d) = {b / d:.2f}   (b)/(a) = {b / a:.2f}   target: (b) >= 300x")
-    else:
-        print(f"(b)/(a) = {b / a:.2f}   target: (b) >= 300x")
+    print(f"(e) line follower, portable path (loopback TCP):       {e:7.0f}x real time")
+    old = f"(b)/(d) = {b / d:.2f}   " if d is not None else ""
+    print(f"{old}(b)/(a) = {b / a:.2f}   (e)/(b) = {e / b:.2f}   target: (b) >= 300x")
     print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.2f} (the figures move with it)")
 
 

@@ -46,7 +46,7 @@ class _VirtualDatetime(datetime.datetime):
 
     @classmethod
     def now(cls, tz=None):
-        moment = _real_datetime.fromtimestamp(time.time(), datetime.UTC)
+        moment = _real_datetime.fromtimestamp(time.time(), datetime.timezone.utc)
         moment = moment.replace(tzinfo=None) if tz is None else moment.astimezone(tz)
         return cls.combine(moment.date(), moment.timetz())
 

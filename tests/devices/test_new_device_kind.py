@@ -9,7 +9,6 @@ import re
 import subprocess
 import sys
 import textwrap
-import tomllib
 from pathlib import Path
 
 import pytest
@@ -48,6 +47,7 @@ def kinds_as_they_were():
 def laser_installed(tmp_path, monkeypatch, kinds_as_they_were) -> Path:
     """The page's laser-ev3 package, installed as pip would: its module and a dist-info with the entry
     points of its pyproject.toml, in a site folder on the path."""
+    tomllib = pytest.importorskip("tomllib", reason="reading TOML needs Python 3.11")
     device, *_ = page_blocks("python")
     project = tomllib.loads(page_blocks("toml")[0])["project"]
     site = tmp_path / "site"

@@ -4,7 +4,7 @@ caller's environment reaches it, and how it ends is told truthfully."""
 import json
 import os
 
-from ev3sim2d.simulator.bricks import brick_environment
+from ev3sim2d.simulator.bricks import PYTHON_P, brick_environment
 
 
 def printed(result):
@@ -127,7 +127,7 @@ def test_a_subreaper_ends_a_bricks_orphans_and_leaves_its_own_children_alone(tmp
     script = tmp_path / "subreaper.py"
     script.write_text(SUBREAPER_SCRIPT)
     done = subprocess.run(
-        [sys.executable, "-P", str(script), str(tmp_path / "forks.py")],
+        [sys.executable, *PYTHON_P, str(script), str(tmp_path / "forks.py")],
         capture_output=True, text=True, timeout=120, cwd=Path(__file__).resolve().parents[2],
     )  # fmt: skip
     assert done.returncode == 0, done.stderr
