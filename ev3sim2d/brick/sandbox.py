@@ -44,6 +44,12 @@ The order of the layers, and why
     the init reaps every orphan and, when the program's process ends, reports its status
     to the outer process and exits, which ends the namespace.
 
+On a system without the Linux kernel's interfaces (macOS, Windows: `linux_kernel()` is false)
+none of the above is tried (its system call numbers would be other calls there): the brick puts up
+what such a system lets an ordinary user put up (a session of its own that ends with its simulator,
+no inherited files, the resource limits it has) and reports Linux's layers as not this system's;
+the simulator adds what the system offers from outside (docs/platforms.md).
+
 A layer the kernel lacks is "off: <why>" in the report; `enter` still succeeds.  What must
 not fail (giving up root, dropping capabilities, a reachable scratch folder) raises
 SandboxError instead, and so does the machine's root seen through a user namespace that has
