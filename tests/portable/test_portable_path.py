@@ -83,7 +83,7 @@ def test_every_module_imports_without_linuxs_pieces(other_systems, kind):
 def test_run_gives_linuxs_fingerprint_and_picture(other_systems, kind, linux_run, tmp_path):
     """The README's run, in every process without Linux's pieces: the same run, the same PNG."""
     done = ev3sim2d(
-        other_systems[kind], "run", FOLLOWER, "--maze", "line", "--time", 20,
+        other_systems[kind], "run", "examples/line_follower.py", "--maze", "line", "--time", 20,
         "--summary", tmp_path / "run.json", "--png", tmp_path / "end.png",
     )  # fmt: skip
     assert done.returncode == 0, done.stderr
@@ -177,6 +177,103 @@ def test_live_runs_and_its_trace_is_the_run_of_run(other_systems, linux_run, tmp
     from ev3sim2d.results.trace import Trace
 
     assert Trace.load(tmp_path / "t.npz").fingerprint() == linux_run["summary"]["fingerprint"]
+
+
+def test_the_other_commands_work_there(other_systems, linux_run, tmp_path):
+    """mazes, lessons, examples, plot, edit and the Python API on a Windows-like Python, and on a
+    macOS-like one a video: as on Linux."""
+    python = other_systems["windows"]
+    for command in (["mazes"], ["lessons"], ["examples", tmp_path / "mine"], ["--version"]):
+        done = ev3sim2d(python, *command)
+        assert done.returncode == 0, (command, done.stderr)
+    assert (tmp_path / "mine" / "line_follower.py").is_file()
+    plotted = ev3sim2d(python, "plot", linux_run["trace"], "--png", tmp_path / "plot.png")
+    assert plotted.returncode == 0 and (tmp_path / "plot.png").stat().st_size > 1000, plotted.stderr
+    api = subprocess.run(
+        [str(python), "-c", "from ev3sim2d import simulate; print(simulate('examples/line_follower.py', "
+         "'line', time_s=20).trace.fingerprint())"],
+        capture_output=True, text=True, cwd=REPO, timeout=120,
+    )  # fmt: skip
+    assert api.stdout.strip() == linux_run["summary"]["fingerprint"], api.stderr
+    world = tmp_path / "arena.yaml"
+    port = _free_port()
+    editor = subprocess.Popen(
+        [str(python), "-m", "ev3sim2d", "edit", str(world), "--new", "8x6", "--no-browser", "--port", str(port)],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=REPO,
+    )  # fmt: skip
+    try:
+        editor.stdout.readline()
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/world", timeout=30) as answer:
+            assert json.loads(answer.read())["width"] == 8
+    finally:
+        editor.kill()
+        editor.wait()
+    video = ev3sim2d(other_systems["macos"], "render", linux_run["trace"], "--video", tmp_path / "m.mp4")
+    here = ev3sim2d(sys.executable, "render", linux_run["trace"], "--video", tmp_path / "l.mp4")
+    assert video.returncode == here.returncode == 0, video.stderr
+    assert (tmp_path / "m.mp4").read_bytes() == (tmp_path / "l.mp4").read_bytes()
+
+
+def test_the_portable_path_can_be_chosen_on_linux_and_changes_nothing_of_the_run(linux_run, tmp_path):
+    """EV3SIM2D_PORTABLE=1: bricks over loopback TCP and spawned grading workers on Linux, with every
+    wall of Linux's sandbox still up, and the same run."""
+    from ev3sim2d.brick.sandbox import linux_kernel
+
+    env = {**os.environ, "EV3SIM2D_PORTABLE": "1"}
+    done = ev3sim2d(
+        sys.executable,
+        "run",
+        FOLLOWER,
+        "--maze",
+        "line",
+        "--time",
+        20,
+        "--summary",
+        tmp_path / "r.json",
+        env=env,
+    )
+    assert done.returncode == 0, done.stderr
+    assert json.loads((tmp_path / "r.json").read_text())["fingerprint"] == linux_run["summary"]["fingerprint"]
+    code = (
+        "from ev3sim2d.grading.grader import can_fork; from ev3sim2d.simulator.run import run_programs; "
+        "from tests.inline_world import arena; import json, pathlib; p = pathlib.Path('p.py'); "
+        "p.write_text('pass'); r = run_programs([p.resolve()], arena(), time_limit_s=1); "
+        "print(json.dumps([can_fork(), r.sandbox[0]]))"
+    )
+    found = subprocess.run(
+        [sys.executable, "-c", f"import sys; sys.path.insert(0, {str(REPO)!r}); {code}"],
+        capture_output=True, text=True, cwd=tmp_path, env=env, timeout=120,
+    )  # fmt: skip
+    forked, report = json.loads(found.stdout)
+    assert forked is False
+    if linux_kernel():
+        assert report["seccomp"] == "on" and report["landlock"].startswith("on"), report
+
+
+def test_a_macos_like_grader_spawns_its_workers(other_systems):
+    """macOS: Python does not fork by default there (a forked child of a process that loaded the
+    system's frameworks may crash), so neither does the grader."""
+    done = subprocess.run(
+        [str(other_systems["macos"]), "-c", "from ev3sim2d.grading.grader import can_fork; print(can_fork())"],
+        capture_output=True, text=True, cwd=REPO,
+    )  # fmt: skip
+    assert done.stdout.strip() == "False", done.stderr
+
+
+def test_the_command_line_keeps_pythons_own_flags():
+    """ev3sim2d no longer starts itself again (it did, for PYTHONHASHSEED): `python -X ...` holds for
+    the whole command, and its exit status is its own."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONHASHSEED"}
+    done = subprocess.run(
+        [sys.executable, "-X", "importtime", "-m", "ev3sim2d", "mazes"],
+        capture_output=True, text=True, cwd=REPO, env=env, timeout=60,
+    )  # fmt: skip
+    assert done.returncode == 0
+    assert "ev3sim2d.commands.mazes" in done.stderr  # -X importtime reached the command's own imports
+    wrong = subprocess.run(
+        [sys.executable, "-m", "ev3sim2d", "run", "nowhere.py"], capture_output=True, env=env
+    )
+    assert wrong.returncode == 2
 
 
 def test_render_and_show_draw_what_linux_draws(other_systems, linux_run, tmp_path):
