@@ -72,6 +72,16 @@ def check_write(rule: list, value: str) -> None:
             raise _invalid(value)
 
 
+class _NoConnection:
+    """The connection as a process the program forked sees it: gone."""
+
+    def send(self, message: list) -> None:
+        raise ProtocolError("a process the program forked is not part of the run")
+
+    def receive(self, timeout_s: float | None = None) -> list:
+        raise ProtocolError("a process the program forked is not part of the run")
+
+
 class BrickLink:
     """What ev3dev2._link calls during a run: device access in virtual time, over the protocol.
 
@@ -164,6 +174,13 @@ class BrickLink:
         """A printed line, sent at once (so it is not lost if the program hangs afterwards)."""
         self.ops.append(["p", t_us, stream, text])
         self.flush()
+
+    def detach(self) -> None:
+        """In a process the program forked: it is not the brick (only the brick's own process runs in
+        lockstep with the world), so it must never write to the connection it shares: from now on
+        every use of it ends that process's program, as a connection that is gone does."""
+        self.channel = _NoConnection()
+        self.ops = []
 
     def _gone(self, why: str) -> None:
         self.stopped = self.stopped or why

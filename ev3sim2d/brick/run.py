@@ -12,6 +12,9 @@ from __future__ import annotations
 
 import gc
 import importlib
+import io
+import os
+import sys
 import time
 
 from ..protocol import ProtocolError
@@ -64,11 +67,21 @@ class BrickRun:
         importlib.import_module("ev3dev2._link").connect(self.link)
         gc.freeze()  # the runtime and the shim: the program's collections need not look at them
 
+    def _forked(self) -> None:
+        """A process the program forked is not the brick: it never writes to the connection (its use of
+        a device or of the clock ends it), and what it prints goes to the console, as a brick's own
+        start-up messages do."""
+        self.link.detach()
+        sys.stdout = io.TextIOWrapper(io.FileIO(1, "w", closefd=False), "utf-8", "backslashreplace")
+        sys.stderr = io.TextIOWrapper(io.FileIO(2, "w", closefd=False), "utf-8", "backslashreplace")
+
     def _tick(self, tick_us: int) -> None:
         self.link.tick(tick_us)
 
     def run(self) -> None:
         s = self.scheduler
+        if hasattr(os, "register_at_fork"):  # (after the sandbox's own forks: they run the program)
+            os.register_at_fork(after_in_child=self._forked)
         try:
             program = Program.read(self.program_path)  # as Python reads a file: BOM, coding line, line ends
         except (OSError, SyntaxError, ValueError) as exc:

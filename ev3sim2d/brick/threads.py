@@ -310,6 +310,10 @@ class VEvent:
             self._s.block(self._waiters, self._vt._us(timeout))
         return self._flag
 
+    def _at_fork_reinit(self) -> None:
+        """(threading calls it on each thread's events in a forked child: no waiter came along)"""
+        self._waiters = []
+
 
 class VSemaphore:
     """threading.Semaphore in virtual time."""
