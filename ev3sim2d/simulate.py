@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .results.output_files import write_file
 from .results.series import RobotSeries, robot_series
 from .results.table import Table
 from .results.trace import OutputLine, Trace
@@ -133,7 +134,7 @@ class SimulationResult:
             raise RuntimeError("could not encode the picture as PNG")
         data = encoded.tobytes()
         if path is not None:
-            Path(path).write_bytes(data)
+            write_file(path, data)
         return data
 
     def video(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..results.output_files import write_file
 from ..results.trace import Trace
 from .exit_codes import EXIT_OK, fail
 
@@ -93,7 +94,7 @@ def write_plot(
     except ImportError as err:
         raise OSError(str(err)) from None
     try:
-        Path(path).write_bytes(data)
+        write_file(path, data)
     except OSError as err:
         raise OSError(
             f"{path}: cannot write the plot ({err.strerror or err}); give a path in a folder you may write to"

@@ -12,13 +12,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 import threading
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 
+from ..results.output_files import replace_keeping_backup
 from ..world.maze_writer import write_maze_text
 from ..world.source_error import WorldFileError
 from ..world.world_json import BadEdit, MazeSource, edited_from_json
@@ -59,7 +58,7 @@ class WorldFile:
             _check_reflects(new_source, edited)
             changed = text != self.source.text
             if changed:
-                write_atomically(self.path, text)
+                replace_keeping_backup(self.path, text)
             self.source = new_source
             return {"saved": str(self.path), "changed": changed, "world": new_source.to_json()}
 
@@ -75,32 +74,6 @@ def _check_reflects(source: MazeSource, edited) -> None:
     )
     if cells != [[item.cell for item in row] for row in edited.cells] or not same_starts:
         raise RuntimeError("the written world does not read back as edited; nothing was saved")
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """Write `text` beside `path`, keep the old file as PATH.bak, then rename the new one into place."""
-    folder = path.parent
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
-            handle.flush()
-            os.fsync(handle.fileno())
-        if path.exists():
-            fd_bak, bak_tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".bak.tmp", dir=folder)
-            try:
-                with os.fdopen(fd_bak, "wb") as handle:
-                    handle.write(path.read_bytes())
-                os.replace(bak_tmp, path.with_name(path.name + ".bak"))
-            except BaseException:
-                Path(bak_tmp).unlink(missing_ok=True)
-                raise
-        mode = path.stat().st_mode & 0o777 if path.exists() else 0o644
-        os.chmod(tmp_name, mode)
-        os.replace(tmp_name, path)
-    except BaseException:
-        Path(tmp_name).unlink(missing_ok=True)
-        raise
 
 
 class EditorHandler(BaseHTTPRequestHandler):

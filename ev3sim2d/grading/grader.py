@@ -26,7 +26,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..results.output_files import write_file
 from ..simulator.bricks import become_subreaper, compile_brick_code, kill_orphans, portable
+from ..simulator.scratch import remove_tree
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -171,12 +173,10 @@ def _variant_entry(variant: Variant) -> dict:
 def write_results(
     path: Path, lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None
 ) -> None:
-    """Write the results file atomically (a reader never sees half a file)."""
+    """Write the results file atomically (a reader never sees half a file), never through a name
+    someone planted in the folder (output_files.py)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    part = path.with_name(path.name + ".part")
-    document = results_document(lesson, results, isolation)
-    part.write_text(json.dumps(document, indent=2) + "\n", encoding="utf-8")
-    os.replace(part, path)
+    write_file(path, json.dumps(results_document(lesson, results, isolation), indent=2) + "\n")
 
 
 def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
@@ -319,7 +319,7 @@ def grade(
                 entry = pending[job.submission]
                 if on_failed_run is not None and outcome.trace_path is not None:
                     on_failed_run(entry.submission, job.variant, outcome.trace_path)
-                shutil.rmtree(job.folder, ignore_errors=True)
+                remove_tree(job.folder)
                 entry.variants[job.variant] = variant_result
                 if len(entry.variants) == len(lesson.variants):
                     del pending[job.submission]
@@ -333,5 +333,5 @@ def grade(
         if zygote is not None:
             zygote.close()
         kill_orphans(everything=True)
-        shutil.rmtree(workdir, ignore_errors=True)
+        remove_tree(workdir)
     return Grading(lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started, isolation)

@@ -11,10 +11,10 @@ import functools
 import importlib
 import inspect
 import re
-import shutil
 from collections.abc import Callable
 from pathlib import Path
 
+from ..results.output_files import make_folder
 from ..results.trace import Trace
 
 VIDEO_MODULE = "ev3sim2d.render.video"
@@ -46,8 +46,7 @@ def folder_name(submission: str) -> str:
 
 def keep_failed_run(folder: Path, submission: str, variant: str, trace_path: Path) -> list[Path]:
     """Write the video (or trace and picture) of one failed run; the paths written."""
-    target = folder / folder_name(submission)
-    target.mkdir(parents=True, exist_ok=True)
+    target = make_folder(folder / folder_name(submission))
     writer = video_writer()
     if writer is not None:
         path = target / f"{variant}.mp4"
@@ -56,7 +55,8 @@ def keep_failed_run(folder: Path, submission: str, variant: str, trace_path: Pat
     from ..render.frame import write_png
 
     kept = target / f"{variant}.npz"
-    shutil.copyfile(trace_path, kept)
+    trace = Trace.load(trace_path)
+    trace.save(kept)
     picture = target / f"{variant}.png"
-    write_png(Trace.load(kept), picture)
+    write_png(trace, picture)
     return [kept, picture]

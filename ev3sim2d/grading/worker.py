@@ -34,7 +34,9 @@ import traceback
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
-from ..simulator.bricks import become_subreaper, console_tail, kill_orphans
+from ..results.output_files import write_file
+from ..simulator.bricks import become_subreaper, kill_orphans
+from ..simulator.scratch import open_console, tail
 from .result import VariantResult, printed_output
 
 RESULT_FILE = "result.json"
@@ -138,7 +140,7 @@ def _redirect_console(folder: Path) -> None:
             stream.flush()
         except (OSError, ValueError):
             pass
-    fd = os.open(folder / CONSOLE_FILE, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    fd = open_console(folder / CONSOLE_FILE)
     os.dup2(fd, 1)
     os.dup2(fd, 2)
     os.close(fd)
@@ -154,9 +156,7 @@ def _redirect_console(folder: Path) -> None:
 
 
 def _write_json(path: Path, data: dict) -> None:
-    part = path.with_suffix(".part")
-    part.write_text(json.dumps(data, default=str), encoding="utf-8")
-    os.replace(part, path)
+    write_file(path, json.dumps(data, default=str))
 
 
 def run_job(job: Job, lesson, zygote=None) -> None:
@@ -364,7 +364,7 @@ def start_job(job: Job, lesson, use_fork: bool, zygote=None) -> RunningJob:
             pass
         return RunningJob(job, pid=pid)
     job_file = Path(job.folder) / "job.json"
-    job_file.write_text(json.dumps(asdict(job)), encoding="utf-8")
+    write_file(job_file, json.dumps(asdict(job)))
     options: dict = {"stdin": subprocess.DEVNULL, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
     if hasattr(os, "setsid"):
         options["start_new_session"] = True
@@ -411,9 +411,9 @@ def collect(running: RunningJob) -> JobOutcome:
             wall_s=wall,
         )
     code = running.returncode if running.returncode is not None else 0
-    tail = console_tail(folder / CONSOLE_FILE, KEEP_CONSOLE_BYTES)
+    said = tail(folder / CONSOLE_FILE, KEEP_CONSOLE_BYTES)
     if code == EXIT_CHECK_ERROR:
-        raise CheckError(f"a check failed while scoring {job.entry} in variant {job.variant_name}:\n{tail}")
+        raise CheckError(f"a check failed while scoring {job.entry} in variant {job.variant_name}:\n{said}")
     if code < 0:
         name = _signal_name(-code)
         if name == "SIGXCPU":
@@ -433,11 +433,11 @@ def collect(running: RunningJob) -> JobOutcome:
         return JobOutcome(
             "crashed", f"the Python interpreter running the program crashed ({what}, {name})", wall_s=wall
         )
-    if code == EXIT_MEMORY or "MemoryError" in tail:
+    if code == EXIT_MEMORY or "MemoryError" in said:
         return JobOutcome(
             "memory", f"the program used more memory than the {job.memory_mb:g} MB it may use", wall_s=wall
         )
-    last = tail.splitlines()[-1] if tail else "no message"
+    last = said.splitlines()[-1] if said else "no message"
     return JobOutcome("crashed", f"the run ended without a result (exit status {code}: {last})", wall_s=wall)
 
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import re
 import struct
 import threading
@@ -27,6 +26,7 @@ from urllib.parse import parse_qs
 from ..devices import registry
 from ..editor.server import STATIC_DIR as EDITOR_STATIC_DIR
 from ..editor.server import EditorHandler, WorldFile
+from ..results.output_files import replace_keeping_backup
 from ..world.cell import Cell
 from ..world.robot_spec import SENSOR_PORTS, robot_yaml
 from ..world.source_error import WorldFileError
@@ -129,17 +129,6 @@ def robot_json(live: LiveRun, index: int) -> dict:
         },
         "ports": list(SENSOR_PORTS),
     }
-
-
-def write_atomically(path: Path, text: str) -> None:
-    """The file's new text, all of it or none (a temporary file beside it, then renamed over it)."""
-    part = path.with_name(f".{path.name}.{os.getpid()}.part")
-    try:
-        part.write_text(text, encoding="utf-8")
-        os.replace(part, path)
-    finally:
-        if part.exists():
-            part.unlink()
 
 
 def _plain(value: object) -> object:
@@ -499,9 +488,7 @@ def _save_robot(server: LiveServer, data: dict) -> dict:
         raise LiveError(
             f"{path} already exists; send replace: true to write over it (the old one is kept as .bak)"
         )
-    if path.exists():
-        write_atomically(path.with_name(path.name + ".bak"), path.read_text(encoding="utf-8"))
-    write_atomically(path, text)
+    replace_keeping_backup(path, text)
     live.adopt_robot_file(number - 1, path)
     return {**live.state(), "saved": {"saved": str(path), "robot": number}}
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from ..results.output_files import writing
 from ..results.trace import Trace
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
@@ -193,8 +194,9 @@ def write_png(trace: Trace, path: str | Path, size: tuple[int, int] = DEFAULT_SI
 
 
 def save_png(image: np.ndarray, path: str | Path) -> None:
-    if not cv2.imwrite(str(path), image, [cv2.IMWRITE_PNG_COMPRESSION, 3]):
-        raise OSError(f"could not write {path}")
+    with writing(path) as temporary:
+        if not cv2.imwrite(str(temporary), image, [cv2.IMWRITE_PNG_COMPRESSION, 3]):
+            raise OSError(f"could not write {path}")
 
 
 def draw_world_picture(trace: Trace, width_px: int = 800) -> np.ndarray:

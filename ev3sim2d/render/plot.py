@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from ..devices.registry import sensor_class
+from ..results.output_files import write_file
 from ..results.series import RobotSeries, held_readings, robot_series
 from ..results.trace import Trace
 
@@ -166,7 +167,7 @@ def plot_png(
     figure.savefig(buffer, format="png", dpi=DPI)
     data = buffer.getvalue()
     if path is not None:
-        Path(path).write_bytes(data)
+        write_file(path, data)
     return data
 
 

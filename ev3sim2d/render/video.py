@@ -23,6 +23,7 @@ import av
 import cv2
 import numpy as np
 
+from ..results.output_files import make_folder, writing
 from ..results.trace import Trace
 from .audio import SAMPLE_RATE, sound_track
 from .frame import FrameRenderer, save_png
@@ -72,7 +73,13 @@ def write_video(
     length_s = len(times) / options.fps
     samples = sound_track(renderer.timeline.sounds, length_s, options.speed) if options.audio else None
 
-    container = av.open(str(path), mode="w", format="mp4", options={"movflags": "+faststart"})
+    with writing(path) as temporary:
+        return _encode(temporary, path, renderer, times, rate, samples, options, progress)
+
+
+def _encode(temporary, path, renderer, times, rate, samples, options, progress) -> int:
+    width, height = options.size
+    container = av.open(str(temporary), mode="w", format="mp4", options={"movflags": "+faststart"})
     try:
         video = container.add_stream("libx264", rate=rate)
         video.width, video.height, video.pix_fmt = width, height, "yuv420p"
@@ -170,8 +177,7 @@ def write_frames(
     progress: bool = True,
 ) -> int:
     """Every `every`-th frame of the video as folder/frame-NNNNNN.png (N: the video frame); returns how many."""
-    folder = Path(folder)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(folder)
     renderer = FrameRenderer(trace, options.size, options.speed)
     times = frame_times(renderer.timeline.end_s, options.fps, options.speed)
     picked = range(0, len(times), max(1, every))

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .output_files import write_file
 from .trace import POSE_COLUMNS, Trace
 
 
@@ -51,4 +52,4 @@ def run_summary(result, programs: list[str], maze: str, seed: int, time_limit_s:
 
 
 def write_summary(summary: dict, path: str | Path) -> None:
-    Path(path).write_text(json.dumps(summary, indent=2) + "\n", encoding="utf-8")
+    write_file(path, json.dumps(summary, indent=2) + "\n")

@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import csv
 import html
+import io
 from pathlib import Path
 
 import numpy as np
+
+from .output_files import write_file
 
 SHOWN_ROWS = 12
 """Rows shown (half from the start, half from the end) when a long table prints itself."""
@@ -37,10 +40,11 @@ class Table:
 
     def to_csv(self, path: str | Path) -> None:
         """Write the table as CSV (UTF-8, a header row)."""
-        with open(path, "w", newline="", encoding="utf-8") as f:
-            writer = csv.writer(f)
-            writer.writerow(self.columns)
-            writer.writerows([[_cell(v) for v in row] for row in self.rows()])
+        text = io.StringIO(newline="")
+        writer = csv.writer(text)
+        writer.writerow(self.columns)
+        writer.writerows([[_cell(v) for v in row] for row in self.rows()])
+        write_file(path, text.getvalue())
 
     def _shown(self) -> list[tuple | None]:
         rows = self.rows()

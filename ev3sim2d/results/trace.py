@@ -17,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .output_files import writing
+
 FORMAT = "ev3sim2d-trace-1"
 
 # columns of one robot in the motion table: its pose, whether its body touches a wall, and whether it
@@ -132,7 +134,7 @@ class Trace:
             "result": self.result,
             "end_motors": self.end_motors,
         }
-        with open(path, "wb") as f:
+        with writing(path) as temporary, open(temporary, "wb") as f:
             np.savez_compressed(
                 f,
                 times=np.asarray(self.times, dtype=float),

@@ -27,7 +27,6 @@ import compileall
 import ctypes
 import os
 import select
-import shutil
 import signal
 import site
 import socket
@@ -43,6 +42,7 @@ from ..protocol.loopback import LoopbackListener
 from ..protocol.shared_memory import available as shared_memory_available
 from ..protocol.shared_memory import create_memory
 from . import job_object, sandbox_exec
+from .scratch import open_console, remove_tree, tail
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
@@ -83,7 +83,7 @@ class BrickProcess:
     popen: subprocess.Popen  # (or a zygote.ZygoteChild, which behaves like one)
     channel: Channel
     scratch: Path
-    console: Path
+    console: int  # the descriptor of its console file, opened here before it started (scratch.py)
     console_text: str = ""  # the end of the brick's console, read when it is stopped
     job: job_object.JobObject | None = None  # (Windows) the Job Object every process of the brick is in
     outside: dict = field(default_factory=dict)  # isolation layers put around it from outside: name -> state
@@ -113,7 +113,8 @@ class BrickProcess:
             pass  # a process that SIGKILL does not end: nothing more to do (its group was killed too)
         _running.discard(self.popen.pid)
         kill_orphans()
-        self.console_text = console_tail(self.console)
+        self.console_text = tail(self.console, KEEP_CONSOLE_BYTES)
+        os.close(self.console)
         _remove(self.scratch)
 
     def ended_by_signal(self) -> str | None:
@@ -138,8 +139,8 @@ def _remove(folder: Path, patience_s: float = 2.0) -> None:
     try again for a while."""
     end = time.monotonic() + patience_s
     while True:
-        shutil.rmtree(folder, ignore_errors=True)
-        if not folder.exists() or time.monotonic() > end:
+        remove_tree(folder)
+        if not os.path.lexists(folder) or time.monotonic() > end:
             return
         time.sleep(0.05)
 
@@ -316,12 +317,15 @@ def start_brick(
         os.chown(scratch, UNPRIVILEGED_UID, UNPRIVILEGED_UID)  # the brick gives up root before it writes
         if scratch_in is not None:
             _let_through(Path(scratch_in))
-    console = scratch / CONSOLE_FILE
-    with open(console, "wb") as out:
+    console = open_console(scratch / CONSOLE_FILE)  # (the program may replace the name, not this)
+    try:
         if portable():
-            brick = _start_over_loopback(scratch, console, out, spin, limits)
+            brick = _start_over_loopback(scratch, console, spin, limits)
         else:
-            brick = _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote)
+            brick = _start_with_socket_pair(scratch, console, shared_memory, spin, zygote)
+    except BaseException:
+        os.close(console)
+        raise
     _running.add(brick.popen.pid)
     _brick_sessions.add(brick.popen.pid)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
@@ -348,7 +352,7 @@ def _outside_layers(job: job_object.JobObject | None) -> dict:
     return layers
 
 
-def _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote) -> BrickProcess:
+def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) -> BrickProcess:
     """A brick given one end of a socket pair (and shared memory, where there is some) as inherited fds."""
     ours, theirs = socket.socketpair()
     memory_fd = create_memory() if shared_memory and shared_memory_available() else -1
@@ -356,15 +360,15 @@ def _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote) 
     popen = None
     if zygote is not None:
         try:
-            popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, out.fileno())
+            popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, console)
         except RuntimeError:  # ZygoteGone
             popen = None
     if popen is None:
         popen = subprocess.Popen(
             _boot_argv(str(theirs.fileno()), str(memory_fd), str(PACKAGE_DIR.parent), scratch=scratch),
             stdin=subprocess.DEVNULL,
-            stdout=out,
-            stderr=out,
+            stdout=console,
+            stderr=console,
             cwd=scratch,
             env=brick_environment(scratch),
             pass_fds=passed,
@@ -379,7 +383,7 @@ def _start_with_socket_pair(scratch, console, out, shared_memory, spin, zygote) 
     return BrickProcess(popen, channel, scratch, console, outside=_outside_layers(None))
 
 
-def _start_over_loopback(scratch, console, out, spin, limits: BrickLimits) -> BrickProcess:
+def _start_over_loopback(scratch, console: int, spin, limits: BrickLimits) -> BrickProcess:
     """A brick that connects back over loopback TCP with the token it reads from its standard input,
     in a Job Object where the system has them (assigned before it hears a word from the simulator)."""
     listener = LoopbackListener()
@@ -388,8 +392,8 @@ def _start_over_loopback(scratch, console, out, spin, limits: BrickLimits) -> Br
         popen = subprocess.Popen(
             _boot_argv("tcp", str(listener.port), str(PACKAGE_DIR.parent), scratch=scratch),
             stdin=subprocess.PIPE,
-            stdout=out,
-            stderr=out,
+            stdout=console,
+            stderr=console,
             cwd=scratch,
             env=brick_environment(scratch),
             **options,
@@ -485,15 +489,3 @@ def _let_through(folder: Path) -> None:
             return
         if part == Path(tempfile.gettempdir()):
             return
-
-
-def console_tail(path: Path, keep_bytes: int = KEEP_CONSOLE_BYTES) -> str:
-    """The end of what a process wrote to its console file (a crash's message)."""
-    try:
-        with open(path, "rb") as f:
-            f.seek(0, os.SEEK_END)
-            size = f.tell()
-            f.seek(max(0, size - keep_bytes))
-            return f.read().decode("utf-8", "replace").strip()
-    except OSError:
-        return ""

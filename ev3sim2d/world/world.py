@@ -6,6 +6,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..results.output_files import write_file
 from .button_press import ButtonPress
 from .cell import Cell
 from .grid import Grid
@@ -153,7 +154,7 @@ class World:
         """Write the world as a YAML world file that `load_maze` (and `ev3sim2d run --maze`) reads back."""
         if self.text is None:
             self._rewrite()
-        Path(path).write_text(self.text, encoding="utf-8")
+        write_file(path, self.text)
 
     def _cell(self, cell: Cell | str) -> Cell:
         if isinstance(cell, Cell):

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.editor.server import write_atomically
+from ev3sim2d.results.output_files import replace_keeping_backup
 from ev3sim2d.world.maze_file import load_maze
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -194,7 +194,7 @@ def test_a_broken_world_is_refused_with_the_reason_and_nothing_written(editor_on
     assert sorted(p.name for p in editor.path.parent.iterdir()) == ["maze.yaml"]
 
 
-def test_write_atomically_leaves_the_old_file_when_writing_fails(tmp_path, monkeypatch):
+def test_saving_leaves_the_old_file_when_writing_fails(tmp_path, monkeypatch):
     path = tmp_path / "w.yaml"
     path.write_text("old")
 
@@ -203,15 +203,15 @@ def test_write_atomically_leaves_the_old_file_when_writing_fails(tmp_path, monke
 
     monkeypatch.setattr(os, "replace", broken_replace)
     with pytest.raises(OSError):
-        write_atomically(path, "new")
+        replace_keeping_backup(path, "new")
     assert path.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["w.yaml"]
 
 
-def test_write_atomically_renames_into_place(tmp_path):
+def test_saving_renames_into_place_and_keeps_the_old_one(tmp_path):
     path = tmp_path / "w.yaml"
     path.write_text("old")
-    write_atomically(path, "new")
+    replace_keeping_backup(path, "new")
     assert path.read_text() == "new" and (tmp_path / "w.yaml.bak").read_text() == "old"
 
 
