@@ -42,7 +42,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.epilog = EPILOG
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     lessons = ", ".join(list_shipped_lessons()) or "none"
-    parser.add_argument("lesson", metavar="LESSON", help=f"a lesson folder, or a shipped lesson: {lessons}")
+    parser.add_argument(
+        "lesson",
+        metavar="LESSON",
+        help=f"a shipped lesson's id ({lessons}), a lesson's id in --lessons DIR, or a lesson folder written as "
+        "a path (./my-lesson): a bare name is never taken from the folder you grade in",
+    )
     parser.add_argument(
         "programs",
         nargs="+",
@@ -86,6 +91,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="with --videos: hidden variants' videos too, named by variant (for the teacher's eyes only: "
         "they show the hidden worlds)",
+    )
+    parser.add_argument(
+        "--lessons",
+        metavar="DIR",
+        help="a folder of your own lessons, where LESSON is looked up by id before the shipped ones",
     )
     parser.add_argument(
         "--hidden",
@@ -139,7 +149,7 @@ def _grade(args) -> int:
     if args.hidden_videos and not args.videos:
         return fail("--hidden-videos needs --videos DIR")
     try:
-        lesson = load_lesson(args.lesson, hidden=args.hidden)
+        lesson = load_lesson(args.lesson, hidden=args.hidden, lessons=args.lessons)
     except WorldFileError as err:
         return fail(str(err))
     if not lesson.hidden_variants() and not args.quiet:

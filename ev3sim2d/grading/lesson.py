@@ -18,6 +18,7 @@ import dataclasses
 import hashlib
 import importlib.util
 import inspect
+import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -169,22 +170,42 @@ def list_shipped_lessons() -> list[str]:
     return sorted(p.parent.name for p in root.glob(f"*/{LESSON_FILE}")) if root.is_dir() else []
 
 
-def find_lesson(name_or_path: str | Path) -> Path:
-    """A lesson folder: a path to a folder or its lesson.yaml, else a shipped lesson by id."""
-    candidate = Path(name_or_path)
-    if candidate.is_file() and candidate.name == LESSON_FILE:
-        return candidate.parent
-    if (candidate / LESSON_FILE).is_file():
-        return candidate
-    shipped = shipped_lessons_dir() / str(name_or_path)
-    if (shipped / LESSON_FILE).is_file():
-        return shipped
+def written_as_path(text: str | Path) -> bool:
+    """Whether a lesson was named by a path (a folder separator in it, a leading `.` or `~`, or a file
+    ending in .yaml) rather than by its id."""
+    text = str(text)
+    separators = {"/", "\\", os.sep, os.altsep or "/"}
+    return (
+        any(s in text for s in separators) or text.startswith((".", "~")) or text.endswith((".yaml", ".yml"))
+    )
+
+
+def find_lesson(name_or_path: str | Path, lessons: str | Path | None = None) -> Path:
+    """A lesson folder: a path written as one (a folder or its lesson.yaml), else the lesson of that id
+    in `lessons` (a teacher's folder of lessons) or among the shipped ones: never a folder that merely
+    has the id's name in the working folder, which may be a student's checkout."""
+    if isinstance(name_or_path, Path) or written_as_path(name_or_path):
+        candidate = Path(name_or_path).expanduser()
+        if candidate.is_file() and candidate.name == LESSON_FILE:
+            return candidate.parent
+        if (candidate / LESSON_FILE).is_file():
+            return candidate
+        raise WorldFileError(
+            str(name_or_path), None, None, f"no lesson folder here (a folder with a {LESSON_FILE})"
+        )
+    name = str(name_or_path)
+    for root in ([Path(lessons)] if lessons is not None else []) + [shipped_lessons_dir()]:
+        if (root / name / LESSON_FILE).is_file():
+            return root / name
     known = ", ".join(list_shipped_lessons()) or "none"
+    where = f"in {lessons}, nor " if lessons is not None else ""
+    mine = (
+        f"; to grade with the folder {name} here, write ./{name}"
+        if (Path(name) / LESSON_FILE).is_file()
+        else ""
+    )
     raise WorldFileError(
-        str(name_or_path),
-        None,
-        None,
-        f"no lesson folder (with a {LESSON_FILE}) and no shipped lesson by this name; shipped lessons: {known}",
+        name, None, None, f"no lesson of this id {where}shipped; shipped lessons: {known}{mine}"
     )
 
 
@@ -210,13 +231,16 @@ def find_hidden(folder: Path, hidden: str | Path | None = None) -> Path | None:
     )
 
 
-def load_lesson(name_or_path: str | Path, hidden: str | Path | None = None) -> Lesson:
-    """Read a lesson by folder, lesson.yaml path or shipped id; worlds and check parameters are checked now.
+def load_lesson(
+    name_or_path: str | Path, hidden: str | Path | None = None, lessons: str | Path | None = None
+) -> Lesson:
+    """Read a lesson by folder, lesson.yaml path or id (find_lesson: in `lessons`, else shipped); worlds
+    and check parameters are checked now.
 
     The hidden variants come from `hidden` (a folder with hidden.yaml, or with <lesson id>/hidden.yaml) if
     given, else from the lesson's own hidden/hidden.yaml if there is one; they follow the visible ones.
     """
-    folder = find_lesson(name_or_path).resolve()
+    folder = find_lesson(name_or_path, lessons).resolve()
     path = folder / LESSON_FILE
     text = read_text_file(path)
     root = load_yaml_text(text, str(path))
