@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import shutil
 import sys
 import tempfile
 import traceback
@@ -17,24 +16,26 @@ from ..grading.report import (
     table,
     write_classroom,
     write_csv,
-    write_json,
     write_junit,
 )
 from ..grading.safe_text import one_line
 from ..grading.submission import DEFAULT_ENTRY, find_submissions
 from ..grading.worker import CheckError
+from ..results.output_files import read_limited, write_file
+from ..simulator.scratch import remove_tree
 from ..world.source_error import WorldFileError
 from .doctor import grading_isolation, this_computer
 from .exit_codes import EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 
 NAME = "grade"
+MAX_TRACE_BYTES = 512 * 2**20  # a failed run's trace kept for --videos
 HELP = "grade programs in a lesson: one file, a student's folder, or a folder of a whole class"
 EPILOG = f"""exit status:
   {EXIT_OK}    every program scored at least --pass-percent (default: full marks)
   {EXIT_PROGRAM_ERROR}    some program scored less (in a class: any one of them), or could not be started
   {EXIT_USAGE}    usage error: a wrong option, a missing lesson or folder, a broken lesson or check
   {EXIT_INTERNAL}    internal error: a bug in ev3sim2d (the traceback is printed; please report it)
-  {130}  interrupted (Ctrl+C); run the same command again with --json to go on
+  {130}  interrupted (Ctrl+C, or ended by a signal); run it again with --json FILE --resume to go on
   141  the output's reader went away (e.g. `ev3sim2d grade ... | head`)"""
 
 
@@ -64,8 +65,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--json",
         metavar="FILE",
-        help="write the results as JSON, rewritten as each submission finishes; run again with the same file "
-        "to resume: unchanged submissions already in it are not graded again",
+        help="write the results as JSON, rewritten as each submission finishes (with --resume, take the results "
+        "of unchanged submissions this grader already wrote there)",
     )
     parser.add_argument(
         "--junit", metavar="FILE", help="write JUnit XML (one test per variant and check), for CI"
@@ -110,7 +111,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"the file to run in a student's folder (default: {DEFAULT_ENTRY})",
     )
     parser.add_argument(
-        "--regrade", action="store_true", help="grade everything again, even what --json already holds"
+        "--resume",
+        action="store_true",
+        help="with --json FILE: go on where an earlier run stopped; a result is taken again only if this "
+        "grader signed it (a results file someone else wrote or changed is graded again)",
     )
     parser.add_argument("--details", action="store_true", help="show every check of every submission")
     parser.add_argument(
@@ -200,7 +204,7 @@ def _grade(args) -> int:
             if variant.hidden and not args.hidden_videos:
                 return  # a video would show the hidden world
             kept = holding / f"{len(failed_runs)}.npz"
-            shutil.copyfile(trace_path, kept)
+            write_file(kept, read_limited(trace_path, MAX_TRACE_BYTES))  # (never through a planted link)
             failed_runs.append((submission.name, variant.name, kept))
 
     try:
@@ -209,7 +213,7 @@ def _grade(args) -> int:
             submissions,
             args.jobs,
             args.json,
-            args.regrade,
+            args.resume,
             progress,
             on_failed_run,
             isolation=isolation,
@@ -220,14 +224,12 @@ def _grade(args) -> int:
         return fail(str(err))
     except KeyboardInterrupt:
         kept = f"; the submissions graded so far are in {args.json}" if args.json else ""
-        print(f"ev3sim2d: grading interrupted{kept}; run the same command again to go on", file=sys.stderr)
+        print(f"ev3sim2d: grading interrupted{kept}; run it again with --resume to go on", file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:
         if holding is not None:
-            shutil.rmtree(holding, ignore_errors=True)
-    try:
-        if args.json:
-            write_json(args.json, grading)
+            remove_tree(holding)
+    try:  # (the grader wrote --json as it went, each result signed)
         if args.junit:
             write_junit(args.junit, grading)
         if args.csv:

@@ -6,9 +6,10 @@ lesson's checks.  A run that leaves no result (killed at its limit, crashed)
 gets every check failed with the reason.  When all of a submission's variants are in, its
 result is complete: it is handed to `on_result` and the results file is
 rewritten (atomically), so an interrupted class run loses nothing that was
-done.  Run again with the same results file and unchanged submissions are
-not graded again (their key, a hash of the lesson and the submission's files,
-is the same, and so would be their score).
+done.  Run again with the same results file and `resume`, and unchanged submissions
+are not graded again (their key, a hash of the lesson and the submission's files,
+is the same, and so would be their score) if this grader signed their results
+(grader_key.py): a results file someone else wrote is never taken as grading.
 """
 
 from __future__ import annotations
@@ -26,9 +27,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..results.output_files import write_file
+from ..results.output_files import read_limited, write_file
 from ..simulator.bricks import become_subreaper, compile_brick_code, kill_orphans, portable
 from ..simulator.scratch import remove_tree
+from .grader_key import grader_key, signature, signed_by_this_grader
 from .lesson import HIDDEN_DIR, Lesson, find_hidden
 from .result import SubmissionResult, VariantResult
 from .scoring import not_run
@@ -38,6 +40,7 @@ from .worker import Job, JobOutcome, RunningJob, collect, start_job
 
 POLL_S = 0.01
 RESULTS_FORMAT = "ev3sim2d-grades-1"
+MAX_RESULTS_BYTES = 64 * 2**20  # a results file read back to resume (a class of thousands)
 
 
 @dataclass
@@ -128,16 +131,21 @@ def variant_result_of(lesson: Lesson, variant_index: int, outcome: JobOutcome) -
     return not_run(lesson, variant_index, outcome.outcome, outcome.message)
 
 
-def load_results(path: Path, lesson: Lesson) -> dict[str, SubmissionResult]:
-    """Results of an earlier run of the same lesson, by key (nothing if the file is missing or another lesson's)."""
+def load_results(path: Path, lesson: Lesson, key: bytes | None) -> dict[str, SubmissionResult]:
+    """Results this grader signed in an earlier run of the same lesson, by key (nothing if the file is
+    missing, another lesson's, or not this grader's; a result whose signature fails is left out)."""
+    if key is None:
+        return {}
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
+        data = json.loads(read_limited(path, MAX_RESULTS_BYTES))
     except (OSError, ValueError):
         return {}
     if not isinstance(data, dict) or data.get("format") != RESULTS_FORMAT or data.get("lesson") != lesson.id:
         return {}
     found = {}
     for item in data.get("submissions", []):
+        if not isinstance(item, dict) or not signed_by_this_grader(key, lesson.id, item):
+            continue
         try:
             result = SubmissionResult.from_dict(item)
         except (KeyError, TypeError):
@@ -147,9 +155,11 @@ def load_results(path: Path, lesson: Lesson) -> dict[str, SubmissionResult]:
     return found
 
 
-def results_document(lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None) -> dict:
+def results_document(
+    lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None, key: bytes | None = None
+) -> dict:
     """The JSON results file: the lesson, what the programs were kept from on this computer, and per
-    submission its score, status, variants and checks."""
+    submission its score, status, variants and checks, signed with the grader's key when given."""
     document = {
         "format": RESULTS_FORMAT,
         "lesson": lesson.id,
@@ -160,6 +170,9 @@ def results_document(lesson: Lesson, results: list[SubmissionResult], isolation:
     if isolation is not None:
         document["isolation"] = isolation
     document["submissions"] = [r.to_dict() for r in results]
+    if key is not None:
+        for item in document["submissions"]:
+            item["signature"] = signature(key, lesson.id, item)
     return document
 
 
@@ -171,12 +184,16 @@ def _variant_entry(variant: Variant) -> dict:
 
 
 def write_results(
-    path: Path, lesson: Lesson, results: list[SubmissionResult], isolation: dict | None = None
+    path: Path,
+    lesson: Lesson,
+    results: list[SubmissionResult],
+    isolation: dict | None = None,
+    key: bytes | None = None,
 ) -> None:
     """Write the results file atomically (a reader never sees half a file), never through a name
     someone planted in the folder (output_files.py)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    write_file(path, json.dumps(results_document(lesson, results, isolation), indent=2) + "\n")
+    write_file(path, json.dumps(results_document(lesson, results, isolation, key), indent=2) + "\n")
 
 
 def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
@@ -207,7 +224,7 @@ def grade(
     submissions: list[Submission],
     jobs: int | None = None,
     results_path: str | Path | None = None,
-    regrade: bool = False,
+    resume: bool = False,
     on_result: Callable[[SubmissionResult], None] | None = None,
     on_failed_run: Callable[[Submission, int, Path], None] | None = None,
     use_fork: bool | None = None,
@@ -217,7 +234,8 @@ def grade(
 
     `on_failed_run(submission, variant_index, trace_path)` is called (before the trace is deleted) for each
     run that did not pass every check, e.g. to keep its trace or render a video.  `isolation` (what the
-    programs are kept from on this computer) goes into the results file as it is.
+    programs are kept from on this computer) goes into the results file as it is.  resume: take the
+    results this grader signed in `results_path` for unchanged submissions, instead of grading them.
     """
     started = time.monotonic()
     become_subreaper()  # a brick's orphans come back here, and are ended (kill_orphans)
@@ -225,7 +243,8 @@ def grade(
     use_fork = can_fork() if use_fork is None else use_fork
     results_file = Path(results_path) if results_path else None
     digest = lesson.digest()
-    earlier = load_results(results_file, lesson) if results_file and not regrade else {}
+    signing_key = grader_key() if results_file else None
+    earlier = load_results(results_file, lesson, signing_key) if results_file and resume else {}
     for variant in lesson.variants:
         variant.world()  # read before forking, so every worker has it
     compile_brick_code()  # once here, not in every worker
@@ -239,7 +258,7 @@ def grade(
     def finish(index: int, result: SubmissionResult) -> None:
         done[index] = result
         if results_file is not None:
-            write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation)
+            write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation, signing_key)
         if on_result is not None:
             on_result(result)
 
@@ -287,7 +306,7 @@ def grade(
                 )
             )
     if results_file is not None and (done or not submissions):
-        write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation)
+        write_results(results_file, lesson, [done[i] for i in sorted(done)], isolation, signing_key)
     for index in sorted(done):
         if on_result is not None:
             on_result(done[index])
