@@ -5,9 +5,14 @@ JUnit XML uses only the attributes of the JUnit XSD that CI systems read (`JUNIT
 details are in each test case's `<system-out>`.  The CSV is UTF-8 with a byte order mark, so that Excel
 opens it with its accents and names right.
 
-Hidden variants appear as "hidden variant N" with their score and what went wrong in words (the
-results hold nothing more of them, see scoring.py); a secondary check that earned nothing because the
-goal was not met is marked `----`, and skipped in JUnit.
+Hidden variants appear as "hidden variant N" with their score, status and which checks passed, in fixed
+words (the results hold nothing more of them, see scoring.py); a secondary check that earned nothing because
+the goal was not met is marked `----`, and skipped in JUnit.  No report holds a wall-clock time a program
+could stretch: JUnit's `time` is the simulated seconds of the visible variants' runs, and its `timestamp`
+the moment grading began.
+
+Text a program chose (a submission's name, an error message, a traceback) is shown through safe_text.py:
+control characters and BiDi overrides escaped for a terminal, characters XML forbids, no spreadsheet formulas.
 """
 
 from __future__ import annotations
@@ -15,12 +20,12 @@ from __future__ import annotations
 import base64
 import csv
 import json
-import os
 import socket
 import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from ..results.output_files import append_text, writing
 from .grader import Grading, write_results
 from .lesson import Lesson
 from .result import SubmissionResult, VariantResult
@@ -124,9 +129,10 @@ def _check_text(variant: VariantResult, check) -> str:
 
 
 def junit_tree(
-    lesson: Lesson, results: list[SubmissionResult], wall_s: float = 0.0, timestamp: float | None = None
+    lesson: Lesson, results: list[SubmissionResult], timestamp: float | None = None
 ) -> ET.ElementTree:
-    """A <testsuites> with one <testsuite> per submission and one <testcase> per variant and check."""
+    """A <testsuites> with one <testsuite> per submission and one <testcase> per variant and check; `time`
+    is the simulated seconds of the visible variants' runs, `timestamp` (default: now) when grading began."""
     suites = ET.Element("testsuites", name=f"ev3sim2d {lesson.id}")
     stamp = time.strftime("%Y-%m-%dT%H:%M:%S", time.localtime(timestamp))
     host = socket.gethostname() or "localhost"
@@ -188,7 +194,8 @@ def junit_tree(
     suites.set("failures", str(total_failures))
     suites.set("errors", str(total_errors))
     suites.set("skipped", str(total_skipped))
-    suites.set("time", f"{wall_s:.3f}")
+    simulated = sum(v.sim_time_s or 0.0 for r in results for v in r.variants if not v.hidden)
+    suites.set("time", f"{simulated:.3f}")
     for element in suites.iter():  # a program's words, made fit for XML
         if element.text:
             element.text = printable(element.text)
@@ -199,9 +206,10 @@ def junit_tree(
 
 
 def write_junit(path: str | Path, grading: Grading) -> None:
+    began = time.time() - grading.wall_s  # (the end would tell how long the programs took)
     _replace(
         Path(path),
-        lambda p: junit_tree(grading.lesson, grading.results, grading.wall_s).write(
+        lambda p: junit_tree(grading.lesson, grading.results, began).write(
             p, encoding="utf-8", xml_declaration=True
         ),
     )
@@ -287,13 +295,12 @@ def write_classroom(path: str | Path, grading: Grading, pass_percent: float = 10
     """Append `result=<base64 JSON>` to path: in a workflow "$GITHUB_OUTPUT", which makes it the step's
     output `result`, for the autograding reporter (docs/github-classroom.md)."""
     encoded = base64.b64encode(json.dumps(classroom_result(grading, pass_percent)).encode()).decode()
-    with open(path, "a", encoding="utf-8") as f:
-        f.write(f"result={encoded}\n")
+    append_text(path, f"result={encoded}\n")
 
 
 def _replace(path: Path, write) -> None:
-    """Write through a temporary file, so a reader never sees half of it."""
+    """Write through a new temporary file, renamed over path: a reader never sees half of it, and a
+    link planted at either name is never written through (output_files.py)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    part = path.with_name(path.name + ".part")
-    write(part)
-    os.replace(part, path)
+    with writing(path) as temporary:
+        write(temporary)
