@@ -28,7 +28,7 @@ from .results.series import RobotSeries, robot_series
 from .results.table import Table
 from .results.trace import OutputLine, Trace
 from .simulator.program import ProgramError, source_with_caret
-from .simulator.run import RunResult, run_programs
+from .simulator.run import RunResult, run_programs, start_failure
 from .world.maze_file import find_maze, load_maze
 from .world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from .world.world import World
@@ -228,6 +228,9 @@ def simulate(
         run = run_programs(
             paths, the_world, robot=spec, time_limit_s=time_s, seed=seed, hang_after_s=hang_after_s
         )
+    unstartable = start_failure(run)
+    if unstartable is not None:
+        raise ProgramError(unstartable)
     if run.trace is None:
         raise RuntimeError(f"the run left no record: {run.reason}")
     return SimulationResult(run)

@@ -84,8 +84,11 @@ class BrickRun:
             os.register_at_fork(after_in_child=self._forked)
         try:
             program = Program.read(self.program_path)  # as Python reads a file: BOM, coding line, line ends
-        except (OSError, SyntaxError, ValueError) as exc:
-            self._end({"t_us": 0, "status": "error", "error": error_report(exc, self.program_path, 0.0)})
+        except (OSError, SyntaxError, ValueError, RecursionError, MemoryError) as exc:
+            # (compiling is the only place a program's source is parsed: here, under the brick's limits)
+            report = {**error_report(exc, self.program_path, 0.0), "compiling": True}
+            report["file"] = report["file"] or self.program_path  # (a source too deep has no line)
+            self._end({"t_us": 0, "status": "error", "error": report})
             return
         task = s.spawn("robot", None, self.env.main_body(program.run), _real_start_new_thread, main=True)
         s.start()

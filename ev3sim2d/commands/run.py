@@ -6,11 +6,12 @@ import argparse
 import sys
 from pathlib import Path
 
+from ..grading.safe_text import one_line, printable
 from ..render.outputs import add_picture_arguments, write_pictures
 from ..results.summary import run_summary, write_summary
 from ..simulator.bricks import become_subreaper
 from ..simulator.program import ProgramError
-from ..simulator.run import RunResult, echo_line, run_programs
+from ..simulator.run import RunResult, echo_line, run_programs, start_failure
 from ..simulator.simulation import StartBlocked
 from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
@@ -158,11 +159,15 @@ STATUS_CODES = {
 
 
 def report_end(args, result: RunResult, programs: list[str]) -> int:
-    """Show the program's error, write the outputs, say how the run ended; the exit status."""
+    """Show the program's error, write the outputs, say how the run ended; the exit status.  What the program
+    chose (its error's text, its traceback, the reason that quotes them) reaches the terminal escaped."""
+    unstartable = start_failure(result)
+    if unstartable is not None:  # its brick could not compile it: said as Python says it, with the line
+        return fail(printable(unstartable), EXIT_PROGRAM_ERROR)
     if result.error:
-        print(result.error["traceback"].rstrip(), file=sys.stderr)
+        print(printable(result.error["traceback"].rstrip()), file=sys.stderr)
         if result.error.get("hint"):
-            print(f"hint: {result.error['hint']}", file=sys.stderr)
+            print(f"hint: {printable(result.error['hint'])}", file=sys.stderr)
     try:
         write_outputs(args, result, programs)
     except OSError as err:
@@ -170,7 +175,7 @@ def report_end(args, result: RunResult, programs: list[str]) -> int:
         return EXIT_USAGE
     speed = result.sim_time_s / result.wall_time_s if result.wall_time_s > 0 else float("inf")
     print(
-        f"ev3sim2d: {result.reason} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
+        f"ev3sim2d: {one_line(result.reason)} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
         file=sys.stderr,
     )
     return STATUS_CODES[result.status]
@@ -187,15 +192,15 @@ def main(args) -> int:
         for program in args.programs:
             if not Path(program).is_file():
                 return fail(f"{program}: no such program file")
-        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs))
+        echo = None if args.quiet else echo_line(sys.stdout, len(args.programs), show=one_line)
         become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
         result = run_programs(
             args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
         )
     except (WorldFileError, RobotOptionError) as err:
         return fail(str(err))
-    except ProgramError as err:
-        return fail(str(err), EXIT_PROGRAM_ERROR)
+    except ProgramError as err:  # a syntax error shows the program's line: what it holds is the program's
+        return fail(printable(str(err)), EXIT_PROGRAM_ERROR)
     except (StartBlocked, FileNotFoundError) as err:
         return fail(str(err))
 

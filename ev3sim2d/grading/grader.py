@@ -59,6 +59,23 @@ class _Pending:
     submission: Submission
     key: str
     variants: dict[int, VariantResult] = field(default_factory=dict)
+    unstartable: dict[int, str] = field(default_factory=dict)  # variant -> why its brick could not start it
+
+    def result(self, lesson: Lesson) -> SubmissionResult:
+        """The submission's result once every variant is in; a program no brick could even compile (a
+        syntax error) is one problem, said once with its line and caret, not once per variant."""
+        reasons = set(self.unstartable.values())
+        if len(self.unstartable) == len(lesson.variants) and len(reasons) == 1:
+            return SubmissionResult(
+                self.submission.name,
+                self.key,
+                problem=reasons.pop(),
+                max_points=lesson.max_score,
+                problem_status="error",
+            )
+        return SubmissionResult(
+            self.submission.name, self.key, [self.variants[v] for v in range(len(lesson.variants))]
+        )
 
 
 class CoreShare:
@@ -208,8 +225,8 @@ def _folder_for_spawned_workers(lesson: Lesson, workdir: Path) -> str:
 
 
 def _cannot_start(submission: Submission) -> str | None:
-    """Why the submission's program cannot be started in any variant (a syntax error, with its line and a
-    caret), or None.  The program is only read and compiled here, never run."""
+    """Why the submission's program cannot be started in any variant (missing, a folder, over the size
+    limit), or None.  The file is only looked at here: it is compiled only inside its bricks."""
     from ..simulator.program import Program, ProgramError
 
     try:
@@ -277,7 +294,7 @@ def grade(
             done[index] = pending_result
             continue
         unstartable = _cannot_start(submission)
-        if unstartable is not None:  # a syntax error: said once, with its caret, not once per variant
+        if unstartable is not None:  # a missing or oversized file: said once, not once per variant
             done[index] = SubmissionResult(
                 submission.name, key, problem=unstartable, max_points=lesson.max_score, problem_status="error"
             )
@@ -340,10 +357,11 @@ def grade(
                     on_failed_run(entry.submission, job.variant, outcome.trace_path)
                 remove_tree(job.folder)
                 entry.variants[job.variant] = variant_result
+                if outcome.outcome == "error":
+                    entry.unstartable[job.variant] = outcome.message
                 if len(entry.variants) == len(lesson.variants):
                     del pending[job.submission]
-                    variants = [entry.variants[v] for v in range(len(lesson.variants))]
-                    finish(job.submission, SubmissionResult(entry.submission.name, entry.key, variants))
+                    finish(job.submission, entry.result(lesson))
     finally:
         gc.unfreeze()
         for worker in running:

@@ -189,7 +189,7 @@ def run_job(job: Job, lesson, zygote=None) -> None:
 def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
     from ..simulator.bricks import BrickLimits
     from ..simulator.program import ProgramError
-    from ..simulator.run import run_programs
+    from ..simulator.run import run_programs, start_failure
     from .run_record import RunRecord
     from .scoring import score_run
 
@@ -225,6 +225,10 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
         return 0
     finally:
         kill_orphans()
+    unstartable = start_failure(result)
+    if unstartable is not None:  # (its brick could not compile it: a syntax error, with its line)
+        _write_json(folder / RESULT_FILE, {"outcome": "error", "message": unstartable})
+        return 0
     if result.limit in ("cpu", "output"):
         what = {
             "cpu": ("timeout", f"the program used more than {job.cpu_s:g} s of CPU time, so it was stopped"),

@@ -264,10 +264,30 @@ def program_error(port: BrickPort, shown: str, real: str) -> dict | None:
         "t_s": port.time_us / 1e6,
         "traceback": text("traceback"),
         "hint": None,
+        "compiling": error.get("compiling") is True,  # the brick could not compile the program
     }
     if report["type"] == "DeviceNotFound":
         report["hint"] = f"this robot has: {_describe_devices(port.robot)}"
     return report
+
+
+def start_failure(result: RunResult) -> str | None:
+    """Why a program could not even start, as its brick found when it compiled it (a syntax error, a
+    file Python cannot read as text, a source too deep to parse): its file and line, the source line and a
+    caret, as Python shows them; None when every program started.  (Only a brick compiles a program:
+    a student's source is never parsed in this process.)"""
+    error = result.error
+    if not error or not error.get("compiling"):
+        return None
+    where = (
+        f"{error['file']}, line {error['line']}"
+        if error.get("file") and error.get("line")
+        else error.get("file")
+    )
+    lines = [line for line in (error.get("traceback") or "").splitlines() if line.strip()]
+    shown = [line for line in lines[1:-1] if not line.lstrip().startswith(("File ", "Traceback"))]
+    message = f"{error['type']}: {error['message']}" if error["type"] != "SyntaxError" else error["message"]
+    return "\n".join([f"{where or 'the program'}: {message}", *shown])
 
 
 def _crash(port: BrickPort, brick: BrickProcess | None) -> tuple[str, str | None]:
@@ -391,14 +411,26 @@ def run_result(
     return RunResult(status, reason, t, wall, trace, error, limit, sandbox, robots)
 
 
-def echo_line(stream, robots: int = 1) -> Callable[[OutputLine], None]:
-    """An echo for run_programs that prints each line with its virtual time (and robot, if several)."""
+def echo_line(stream, robots: int = 1, *, show: Callable[[str], str]) -> Callable[[OutputLine], None]:
+    """An echo for run_programs that prints each line with its virtual time (and robot, if several).
+
+    show(text) is the line as the stream may take it: for a terminal, with the control characters a
+    program could print (escape sequences, a lone carriage return) made visible (grading/safe_text.py's
+    one_line, which a front door passes: this layer cannot import it)."""
 
     def echo(line: OutputLine) -> None:
         who = f" robot{line.robot + 1}" if robots > 1 else ""
-        stream.write(f"[{line.t_s:8.3f} s{who}] {line.text}\n")
+        stream.write(f"[{line.t_s:8.3f} s{who}] {show(line.text)}\n")
 
     return echo
 
 
-__all__ = ["run_programs", "robot_specs", "RunResult", "ProgramError", "StartBlocked", "echo_line"]
+__all__ = [
+    "run_programs",
+    "robot_specs",
+    "RunResult",
+    "ProgramError",
+    "StartBlocked",
+    "echo_line",
+    "start_failure",
+]
