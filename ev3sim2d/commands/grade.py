@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 import tempfile
 import traceback
@@ -133,18 +134,48 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+class EndedBySignal(KeyboardInterrupt):
+    """SIGTERM or SIGHUP (a `timeout`, a cancelled CI job, a closed terminal): ended as Ctrl+C ends it."""
+
+    def __init__(self, signal_number: int) -> None:
+        super().__init__(f"signal {signal_number}")
+        self.signal_number = signal_number
+
+
+def _end_on_signals() -> dict:
+    """SIGTERM and SIGHUP end grading as Ctrl+C does: every process it started is ended, and what was
+    done is written (the signals' earlier handlers, to put back)."""
+
+    def ended(number, frame) -> None:
+        raise EndedBySignal(number)
+
+    earlier = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        number = getattr(signal, name, None)
+        if number is not None:
+            try:
+                earlier[number] = signal.signal(number, ended)
+            except (ValueError, OSError):  # (not the main thread: a caller that handles it)
+                pass
+    return earlier
+
+
 def main(args) -> int:
+    earlier = _end_on_signals()
     try:
         return _grade(args)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as interrupt:
         print("ev3sim2d: grading interrupted", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted_status(interrupt)
     except (BrokenPipeError, SystemExit):
         raise  # the command line's own (cli.py)
     except Exception:  # noqa: BLE001 - our bug: said loudly, with its own exit status
         traceback.print_exc()
         print("ev3sim2d: internal error: this is a bug in ev3sim2d; please report it", file=sys.stderr)
         return EXIT_INTERNAL
+    finally:
+        for number, handler in earlier.items():
+            signal.signal(number, handler)
 
 
 def _grade(args) -> int:
@@ -222,22 +253,18 @@ def _grade(args) -> int:
             _keep_failed_runs(Path(args.videos), failed_runs, args.quiet)
     except CheckError as err:  # a bug in a check, most likely in the lesson's check_*.py
         return fail(str(err))
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as interrupt:
+        done = getattr(interrupt, "grading", None)
+        if done is not None:  # the reports of what was done, so that nothing done is lost
+            _write_reports(args, done)
         kept = f"; the submissions graded so far are in {args.json}" if args.json else ""
         print(f"ev3sim2d: grading interrupted{kept}; run it again with --resume to go on", file=sys.stderr)
-        return EXIT_INTERRUPTED
+        return _interrupted_status(interrupt)
     finally:
         if holding is not None:
             remove_tree(holding)
-    try:  # (the grader wrote --json as it went, each result signed)
-        if args.junit:
-            write_junit(args.junit, grading)
-        if args.csv:
-            write_csv(args.csv, grading)
-        if args.classroom:
-            write_classroom(args.classroom, grading, args.pass_percent)
-    except OSError as err:
-        return fail(f"could not write the results: {err}")
+    if not _write_reports(args, grading):
+        return EXIT_USAGE
 
     if len(grading.results) == 1 or args.details:
         for result in grading.results:
@@ -256,6 +283,28 @@ def _grade(args) -> int:
             file=sys.stderr,
         )
     return EXIT_PROGRAM_ERROR if below else EXIT_OK
+
+
+def _write_reports(args, grading) -> bool:
+    """JUnit, CSV and the classroom line (the grader wrote --json as it went, each result signed);
+    False, said on stderr, when one could not be written."""
+    try:
+        if args.junit:
+            write_junit(args.junit, grading)
+        if args.csv:
+            write_csv(args.csv, grading)
+        if args.classroom:
+            write_classroom(args.classroom, grading, args.pass_percent)
+    except OSError as err:
+        fail(f"could not write the results: {err}")
+        return False
+    return True
+
+
+def _interrupted_status(interrupt: BaseException) -> int:
+    """130 for Ctrl+C, as a shell shows it; 128 + N for signal N (143 for SIGTERM)."""
+    number = getattr(interrupt, "signal_number", None)
+    return 128 + number if number else EXIT_INTERRUPTED
 
 
 def _percent(result) -> float:

@@ -54,6 +54,16 @@ class Grading:
     isolation: dict | None = None  # what the programs were kept from on this computer (doctor.py)
 
 
+class GradingInterrupted(KeyboardInterrupt):
+    """Grading stopped early (Ctrl+C, or a signal that ends it: signal_number); `grading` holds the
+    submissions that were done, so that their reports can still be written."""
+
+    def __init__(self, grading: Grading, signal_number: int | None = None) -> None:
+        super().__init__("grading was interrupted")
+        self.grading = grading
+        self.signal_number = signal_number
+
+
 @dataclass
 class _Pending:
     submission: Submission
@@ -362,6 +372,11 @@ def grade(
                 if len(entry.variants) == len(lesson.variants):
                     del pending[job.submission]
                     finish(job.submission, entry.result(lesson))
+    except KeyboardInterrupt as interrupt:  # (Ctrl+C, or SIGTERM or SIGHUP as the grade command turns them)
+        partial = Grading(
+            lesson, [done[i] for i in sorted(done)], reused, time.monotonic() - started, isolation
+        )
+        raise GradingInterrupted(partial, getattr(interrupt, "signal_number", None)) from None
     finally:
         gc.unfreeze()
         for worker in running:

@@ -35,7 +35,8 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 
 from ..results.output_files import write_file
-from ..simulator.bricks import become_subreaper, kill_orphans
+from ..simulator import job_object
+from ..simulator.bricks import become_subreaper, die_with_parent, kill_orphans
 from ..simulator.scratch import open_console, tail
 from .result import VariantResult, printed_output
 
@@ -46,6 +47,7 @@ EXIT_MEMORY = 3
 EXIT_INTERNAL = 4
 EXIT_CHECK_ERROR = 5
 KEEP_CONSOLE_BYTES = 2000
+WORKER_MEMORY_MB = 2048  # a worker's own ceiling (the brick's program has the lesson's memory_mb)
 
 SIGNAL_NAMES = {
     "SIGSEGV": "a segmentation fault",
@@ -79,6 +81,7 @@ class Job:
     readable: str = ""  # the submission (file or folder): all the brick may read besides Python
     program_seed: int = 0  # the program's `random`: the same in every variant, so it cannot tell them apart
     cpu: int | None = None  # the core the worker and its brick share (None: any, and they may spin)
+    grader: int = 0  # the grader's pid: the worker ends when it does
 
 
 @dataclass
@@ -114,12 +117,25 @@ def _limit(which: int, soft: int, hard: int | None = None) -> None:
 
 
 def _set_limits(job: Job) -> None:
-    """The worker's own limits (the student's program has its brick's): no core dumps."""
+    """The worker's own limits (the student's program has its brick's): no core dumps, and a memory
+    ceiling of its own (WORKER_MEMORY_MB above what it has now), so that one run can never take the
+    machine.  (Windows: the grader's Job Object for the worker holds its ceiling.)"""
     try:
         import resource
-    except ImportError:  # Windows: only the parent's wall-clock limit
+    except ImportError:
         return
     _limit(resource.RLIMIT_CORE, 0)
+    if hasattr(resource, "RLIMIT_AS"):
+        _limit(resource.RLIMIT_AS, _address_space() + WORKER_MEMORY_MB * 2**20)
+
+
+def _address_space() -> int:
+    """What this process has mapped now, in bytes (0 where the system does not say)."""
+    try:
+        with open("/proc/self/statm", "rb") as f:
+            return int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, AttributeError):
+        return 0
 
 
 def _pin(job: Job) -> None:
@@ -165,6 +181,7 @@ def run_job(job: Job, lesson, zygote=None) -> None:
     folder = Path(job.folder)
     try:
         _redirect_console(folder)
+        die_with_parent(job.grader)
         become_subreaper()
         _set_limits(job)
         _pin(job)
@@ -295,6 +312,7 @@ class RunningJob:
         self.deadline = self.started + job.wall_s
         self.killed_for: str | None = None
         self.returncode: int | None = None
+        self.job_object: job_object.JobObject | None = None  # (Windows) its ceiling; closing it ends it
 
     def poll(self) -> bool:
         """Whether the worker has ended (reaping it, and ending anything it left behind)."""
@@ -341,6 +359,9 @@ class RunningJob:
             time.sleep(0.01)
 
     def _end_group(self) -> None:
+        """Everything the worker started ends with it (its process group; on Windows its Job Object)."""
+        if self.job_object is not None:
+            self.job_object.close()
         if hasattr(os, "killpg"):
             try:
                 os.killpg(self.pid, signal.SIGKILL)
@@ -355,18 +376,23 @@ def start_job(job: Job, lesson, use_fork: bool, zygote=None) -> RunningJob:
     if use_fork:
         sys.stdout.flush()
         sys.stderr.flush()
+        job.grader = os.getpid()
         pid = os.fork()
         if pid == 0:  # the child
             try:
                 os.setpgid(0, 0)
             except OSError:
                 pass
+            for name in ("SIGTERM", "SIGHUP"):  # (the grader's handlers end grading, not a worker)
+                if hasattr(signal, name):
+                    signal.signal(getattr(signal, name), signal.SIG_DFL)
             run_job(job, lesson, zygote)
         try:
             os.setpgid(pid, pid)  # also from here, so a kill can never miss the group
         except OSError:
             pass
         return RunningJob(job, pid=pid)
+    job.grader = os.getpid()
     job_file = Path(job.folder) / "job.json"
     write_file(job_file, json.dumps(asdict(job)))
     options: dict = {"stdin": subprocess.DEVNULL, "stdout": subprocess.DEVNULL, "stderr": subprocess.DEVNULL}
@@ -375,7 +401,14 @@ def start_job(job: Job, lesson, use_fork: bool, zygote=None) -> RunningJob:
     else:
         options["creationflags"] = getattr(subprocess, "CREATE_NEW_PROCESS_GROUP", 0)
     popen = subprocess.Popen([sys.executable, "-m", "ev3sim2d.grading.worker", str(job_file)], **options)
-    return RunningJob(job, popen=popen)
+    running = RunningJob(job, popen=popen)
+    if job_object.available():  # the worker's ceiling, and its end with the grader's
+        try:
+            running.job_object = job_object.JobObject(WORKER_MEMORY_MB + job.memory_mb * 4, 1024, None)
+            running.job_object.assign(popen)
+        except OSError:
+            pass
+    return running
 
 
 def _signal_name(number: int) -> str:

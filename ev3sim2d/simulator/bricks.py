@@ -33,6 +33,7 @@ import socket
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +42,7 @@ from ..protocol import PROTOCOL, Channel, SharedChannel
 from ..protocol.loopback import LoopbackListener
 from ..protocol.shared_memory import available as shared_memory_available
 from ..protocol.shared_memory import create_memory
-from . import job_object, sandbox_exec
+from . import job_object, memory_watch, sandbox_exec
 from .scratch import open_console, remove_tree, tail
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
@@ -86,6 +87,7 @@ class BrickProcess:
     console: int  # the descriptor of its console file, opened here before it started (scratch.py)
     console_text: str = ""  # the end of the brick's console, read when it is stopped
     job: job_object.JobObject | None = None  # (Windows) the Job Object every process of the brick is in
+    memory: memory_watch.Watched | None = None  # its processes' memory together, where /proc shows them
     outside: dict = field(default_factory=dict)  # isolation layers put around it from outside: name -> state
 
     def stop(self, patience_s: float = 0.0) -> None:
@@ -94,6 +96,7 @@ class BrickProcess:
         patience_s: how long a brick that is ending anyway (it said so, or its connection is gone)
         may take to end by itself, so that its exit status says how it ended."""
         self.channel.close()
+        memory_watch.unwatch(self.popen.pid)
         if patience_s > 0:
             _wait_for_exit(self.popen, patience_s)
         if hasattr(os, "killpg"):
@@ -127,8 +130,10 @@ class BrickProcess:
         return None
 
     def limit_at_end(self) -> str | None:
-        """The limit the brick was ended at from outside, where the system says so by its exit code (a
-        Job Object's CPU time: "cpu"), else None."""
+        """The limit the brick was ended at from outside: its processes' memory together (memory_watch),
+        a Job Object's CPU time (Windows says so by the exit code), else None."""
+        if self.memory is not None and self.memory.over_bytes is not None:
+            return "memory"
         if self.job is not None and self.popen.returncode == job_object.CPU_LIMIT_EXIT_CODE:
             return "cpu"
         return None
@@ -209,6 +214,31 @@ def become_subreaper() -> bool:
     if done and _subreaper_since is None:
         _subreaper_since = _boot_ticks_now()
     return done
+
+
+def die_with_parent(parent: int) -> str:
+    """End this process when its parent does, however the parent ends (SIGKILL too): the kernel's
+    parent-death signal where it has one, else a thread that looks whether the parent is still the
+    one it was (a POSIX system reparents an orphan); where neither exists (Windows) the parent's Job
+    Object does it.  How, in words."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.prctl(1, signal.SIGKILL, 0, 0, 0) == 0:  # PR_SET_PDEATHSIG
+            if os.getppid() != parent:  # it died before the signal was asked for
+                os._exit(1)
+            return "the kernel's parent-death signal"
+    except (OSError, AttributeError, TypeError):
+        pass
+    if not hasattr(os, "getppid") or not hasattr(os, "setsid"):
+        return "its parent's Job Object"
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.2)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="ev3sim2d-parent-watch", daemon=True).start()
+    return "a thread that watches its parent"
 
 
 def _boot_ticks_now() -> int:
@@ -328,6 +358,8 @@ def start_brick(
         raise
     _running.add(brick.popen.pid)
     _brick_sessions.add(brick.popen.pid)
+    if brick.job is None:  # (a Job Object limits its processes' memory together itself)
+        brick.memory = memory_watch.watch(brick.popen.pid, limits.memory_mb)
     read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
     return brick, read_paths
 
