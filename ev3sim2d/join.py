@@ -199,11 +199,13 @@ def _forward(net: Channel, message: list, result: JoinResult) -> bool:
 
 
 def _show(message: list, result: JoinResult, echo) -> None:
-    """Printed lines as they come; the brick's end message, for the report."""
+    """Printed lines as they come (as the brick sent them: echo, the front door's, shows them safely on a
+    terminal, and passes on only a line that is text with a time); the brick's end message, for the report."""
     kind = message[0]
     if kind == "ops" and echo is not None and len(message) == 2 and type(message[1]) is list:
         for op in message[1]:
-            if type(op) is list and len(op) == 4 and op[0] == "p":
-                echo(op[1] / 1e6, op[2], op[3])
+            printed = type(op) is list and len(op) == 4 and op[0] == "p"
+            if printed and type(op[1]) is int and type(op[3]) is str:
+                echo(op[1] / 1e6, "stderr" if op[2] == "stderr" else "stdout", op[3])
     elif kind == "end" and len(message) == 2 and type(message[1]) is dict:
         result.local_end = message[1]

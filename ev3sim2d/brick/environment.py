@@ -1,13 +1,12 @@
 """What a program finds changed in its brick process, so that a run is the same on every machine.
 
 Installed once, before the program is loaded (the brick process ends with the run):
-- `time.sleep/time/monotonic/perf_counter/process_time/thread_time` (and _ns forms)
-  follow the brick's virtual clock, and so do `time.localtime/gmtime/ctime/asctime/
-  strftime` without a time argument, and `datetime.datetime.now()/today()` and
-  `datetime.date.today()`; the time zone is UTC on every machine;
+- every clock and CPU-time reading, every timeout and timer follows the brick's virtual clock
+  (clocks.py: `time`, `datetime`, `os.times`, `resource.getrusage`, file times, `select`,
+  `signal.setitimer` ...); the time zone is UTC on every machine;
 - `random` is seeded with the run's seed, and `random.seed()` with no argument,
-  a new `random.Random()`, `os.urandom` (so `secrets`, `uuid.uuid4` and
-  `random.SystemRandom`) and numpy's random generators (the legacy global one,
+  a new `random.Random()`, `os.urandom` and `os.getrandom` (so `secrets`, `uuid.uuid4`
+  and `random.SystemRandom`) and numpy's random generators (the legacy global one,
   and `default_rng()` without a seed) draw from the run's seed too;
 - `print` and writes to stderr are sent to the simulator with their virtual
   time (a printed line costs 1 ms, as on the brick's console); `input()` reads
@@ -20,52 +19,21 @@ The hash seed of str and bytes is fixed by the process's environment
 from __future__ import annotations
 
 import _thread
-import datetime
 import importlib.util
 import io
 import os
 import random
 import sys
-import time
 from collections.abc import Callable
 
 from . import identity
+from .clocks import VirtualClocks
 from .scheduler import Scheduler
 from .threads import VirtualThreads
 
-VIRTUAL_EPOCH_S = 1_735_689_600.0  # time.time() at the start of every run: 2025-01-01 00:00 UTC
-MONOTONIC_BASE_S = 1_000.0
 PRINT_US = 1_000
 
 _real_start_new_thread = _thread.start_new_thread
-_real_datetime, _real_date = datetime.datetime, datetime.date
-
-
-class _VirtualDatetime(datetime.datetime):
-    """datetime.datetime whose now()/today() read the virtual clock (as UTC, the same on every machine)."""
-
-    @classmethod
-    def now(cls, tz=None):
-        moment = _real_datetime.fromtimestamp(time.time(), datetime.timezone.utc)
-        moment = moment.replace(tzinfo=None) if tz is None else moment.astimezone(tz)
-        return cls.combine(moment.date(), moment.timetz())
-
-    @classmethod
-    def today(cls):
-        return cls.now()
-
-    @classmethod
-    def utcnow(cls):
-        return cls.now()
-
-
-class _VirtualDate(datetime.date):
-    """datetime.date whose today() reads the virtual clock."""
-
-    @classmethod
-    def today(cls):
-        moment = _VirtualDatetime.now()
-        return cls(moment.year, moment.month, moment.day)
 
 
 class ProgramOutput(io.TextIOBase):
@@ -113,15 +81,24 @@ class ProgramOutput(io.TextIOBase):
         self.partial.clear()
 
 
-class _SeedNumpy:
-    """Seeds numpy's legacy global generator with the run's seed as soon as numpy.random is imported.
-    (A meta path finder needs only find_spec; importlib.abc would cost every brick 25 ms to import.)"""
+class _AfterImport:
+    """Calls fn(module) once a module is imported (at once, if it is already): a meta path finder that
+    wraps the module's loader.  (A meta path finder needs only find_spec; importlib.abc would cost every
+    brick 25 ms to import.)"""
 
-    def __init__(self, seed: int) -> None:
-        self.seed = seed
+    def __init__(self) -> None:
+        self.calls: dict[str, list[Callable]] = {}
+
+    def add(self, name: str, fn: Callable) -> None:
+        if sys.modules.get(name) is not None:
+            fn(sys.modules[name])
+        self.calls.setdefault(name, []).append(fn)
+        if self not in sys.meta_path:
+            sys.meta_path.insert(0, self)
 
     def find_spec(self, name, path=None, target=None):
-        if name != "numpy.random":
+        calls = self.calls.get(name)
+        if not calls:
             return None
         sys.meta_path.remove(self)
         try:
@@ -130,18 +107,25 @@ class _SeedNumpy:
             sys.meta_path.insert(0, self)
         if spec is None or spec.loader is None:
             return spec
-        loader, seed = spec.loader, self.seed
-        exec_module = loader.exec_module
+        exec_module = spec.loader.exec_module
 
-        def exec_and_seed(module):
+        def exec_and_call(module):
             exec_module(module)
-            try:
-                module.seed(seed % 2**32)
-            except Exception:  # noqa: BLE001 - an odd numpy: its generator stays as it is
-                pass
+            for fn in calls:
+                fn(module)
 
-        spec.loader = _Loader(loader, exec_and_seed)
+        spec.loader = _Loader(spec.loader, exec_and_call)
         return spec
+
+
+def _seed_numpy(seed: int) -> Callable:
+    def seed_legacy_generator(module) -> None:
+        try:
+            module.seed(seed % 2**32)
+        except Exception:  # noqa: BLE001 - an odd numpy: its generator stays as it is
+            pass
+
+    return seed_legacy_generator
 
 
 class _Loader:
@@ -156,10 +140,12 @@ class _Loader:
         return getattr(self._loader, name)
 
 
-def _deterministic_randomness(seed: int) -> None:
-    """random, os.urandom and numpy.random, all drawn from the run's seed."""
+def _deterministic_randomness(seed: int, after_import: _AfterImport) -> None:
+    """random, os.urandom, os.getrandom and numpy.random, all drawn from the run's seed."""
     source = random.Random(f"ev3sim2d-urandom-{seed}")
     os.urandom = lambda size: source.randbytes(size)
+    if hasattr(os, "getrandom"):
+        os.getrandom = lambda size, flags=0: source.randbytes(size)
     random._urandom = os.urandom  # what SystemRandom (so `secrets`, and numpy's fresh seeds) draws from
     seeds = random.Random(f"ev3sim2d-seeds-{seed}")
     real_seed = random.Random.seed
@@ -172,52 +158,7 @@ def _deterministic_randomness(seed: int) -> None:
     random.Random.seed = seed_method
     random.seed(seed)
     random.seed = random._inst.seed
-    sys.meta_path.insert(0, _SeedNumpy(seed))
-
-
-def _virtual_clock(scheduler: Scheduler) -> None:
-    now = lambda: scheduler.now_us  # noqa: E731
-
-    def sleep(seconds: float) -> None:
-        if seconds < 0:
-            raise ValueError("sleep length must be non-negative")
-        scheduler.spend(int(round(seconds * 1e6)))
-
-    def epoch_s() -> float:
-        return VIRTUAL_EPOCH_S + now() / 1e6
-
-    clocks: dict[str, Callable] = {
-        "sleep": sleep,
-        "time": epoch_s,
-        "monotonic": lambda: MONOTONIC_BASE_S + now() / 1e6,
-        "perf_counter": lambda: now() / 1e6,
-        "process_time": lambda: now() / 1e6,
-        "thread_time": lambda: now() / 1e6,
-        "time_ns": lambda: int(VIRTUAL_EPOCH_S * 1e9) + now() * 1000,
-        "monotonic_ns": lambda: int(MONOTONIC_BASE_S * 1e9) + now() * 1000,
-        "perf_counter_ns": lambda: now() * 1000,
-        "process_time_ns": lambda: now() * 1000,
-        "thread_time_ns": lambda: now() * 1000,
-    }
-    for name, fn in clocks.items():
-        fn.__name__ = name
-        fn.__doc__ = getattr(time, name).__doc__
-        setattr(time, name, fn)
-    real = {name: getattr(time, name) for name in ("localtime", "gmtime", "ctime")}
-
-    def at(name: str) -> Callable:
-        def fn(secs=None):
-            return real[name](epoch_s() if secs is None else secs)
-
-        fn.__name__ = name
-        return fn
-
-    for name in real:
-        setattr(time, name, at(name))
-    real_strftime, real_asctime = time.strftime, time.asctime
-    time.strftime = lambda format, t=None: real_strftime(format, time.localtime() if t is None else t)
-    time.asctime = lambda t=None: real_asctime(time.localtime() if t is None else t)
-    datetime.datetime, datetime.date = _VirtualDatetime, _VirtualDate
+    after_import.add("numpy.random", _seed_numpy(seed))
 
 
 class BrickEnvironment:
@@ -232,8 +173,10 @@ class BrickEnvironment:
 
     def install(self) -> None:
         s = self.scheduler
-        _virtual_clock(s)
-        _deterministic_randomness(self.seed)
+        after_import = _AfterImport()
+        self.clocks = VirtualClocks(s, self.seed, _real_start_new_thread, self.link.flush)
+        self.clocks.install(after_import.add)
+        _deterministic_randomness(self.seed, after_import)
         _thread.start_new_thread = self._start_new_thread
         _thread.start_new = self._start_new_thread
         self.threads = VirtualThreads(s, _real_start_new_thread)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..grading.safe_text import one_line, printable
 from ..join import JoinError, parse_address, run_joined
 from ..simulator.bricks import become_subreaper
 from ..simulator.program import ProgramError
@@ -32,12 +33,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _log(text: str) -> None:
-    print(f"ev3sim2d: {text}", file=sys.stderr, flush=True)
+    """A line for the terminal; what the program (or the world) chose in it, escaped."""
+    print(f"ev3sim2d: {one_line(text)}", file=sys.stderr, flush=True)
 
 
 def _echo(t_s: float, stream: str, text: str) -> None:
+    """A line the program printed, its control characters shown escaped (safe_text.py)."""
     out = sys.stderr if stream == "stderr" else sys.stdout
-    out.write(f"[{t_s:8.3f} s] {text}\n")
+    out.write(f"[{float(t_s):8.3f} s] {one_line(str(text))}\n")
     out.flush()
 
 
@@ -61,16 +64,16 @@ def main(args) -> int:
             args.wait,
         )
     except ProgramError as err:
-        return fail(str(err), EXIT_PROGRAM_ERROR)
+        return fail(printable(str(err)), EXIT_PROGRAM_ERROR)
     except JoinError as err:
-        return fail(str(err))
+        return fail(one_line(str(err)))
     except KeyboardInterrupt:
         return fail("interrupted: this robot's program was stopped", EXIT_INTERRUPTED)
     error = (result.local_end or {}).get("error")
     if isinstance(error, dict) and error.get("traceback"):
-        print(str(error["traceback"]).rstrip(), file=sys.stderr)
+        print(printable(str(error["traceback"]).rstrip()), file=sys.stderr)
     if result.over is None:
-        return fail(f"{result.lost or 'the world went away'} before the run was over", EXIT_USAGE)
+        return fail(one_line(f"{result.lost or 'the world went away'} before the run was over"), EXIT_USAGE)
     own = result.over.get("robot") or {}
     _log(f"robot {result.seat['number']}: {own.get('reason', '?')}")
     _log(f"the run: {result.over.get('reason', '?')}")

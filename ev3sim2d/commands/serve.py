@@ -6,6 +6,7 @@ import argparse
 import secrets
 import sys
 
+from ..grading.safe_text import one_line
 from ..serve import serve_run
 from ..simulator.bricks import become_subreaper
 from ..simulator.lobby import AddressInUse, Lobby, is_loopback
@@ -43,7 +44,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _log(text: str) -> None:
-    print(f"ev3sim2d: {text}", file=sys.stderr, flush=True)
+    """A line for the terminal; what a joiner or its program chose (a name, an error) in it, escaped."""
+    print(f"ev3sim2d: {one_line(text)}", file=sys.stderr, flush=True)
 
 
 def main(args) -> int:
@@ -81,7 +83,7 @@ def main(args) -> int:
     if host in ("0.0.0.0", "::"):
         _log("(from another computer, put this computer's address on the network in place of the host)")
     names = {}
-    echo = None if args.quiet else echo_line(sys.stdout, count)
+    echo = None if args.quiet else echo_line(sys.stdout, count, show=one_line)
     become_subreaper()
     try:
         result, guests = serve_run(
@@ -94,7 +96,7 @@ def main(args) -> int:
             f"interrupted before the run: {joined} of {count} robot(s) had a program", EXIT_INTERRUPTED
         )
     except (ProgramError, StartBlocked) as err:
-        return fail(str(err))
+        return fail(one_line(str(err)))
     finally:
         lobby.close()
     for own, name in zip(result.robots, names, strict=False):

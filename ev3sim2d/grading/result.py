@@ -12,8 +12,14 @@ A submission's status is the worst of its variants' (in the order crashed, memor
 
 In a lesson with several robots each check's result names the robot it looked at (`robot`).
 A secondary check that passed but earned nothing because a goal check of its variant failed is `gated`
-(and not passed); a hidden variant's result is named "hidden variant N" and holds no times or numbers
-(see scoring.py).
+(and not passed).
+
+A hidden variant's result is named "hidden variant N" and tells its score, its status, whether each check
+passed, and in words only what cannot carry more than that: how the run ended, one of HIDDEN_RUN (never the
+program's exception, message, exit code, printed text, or a time), and for each check one sentence for a
+pass and one for a fail (scoring.py).  A program could otherwise spell out what it senses of a hidden
+world in what it chooses to raise, print or take.  A VariantResult made for a hidden variant (by scoring,
+or read back from a results file) is sealed so: no times, no output, and its run's words one of HIDDEN_RUN.
 
 What the student's program printed in a visible variant is kept (`output`), trimmed to the first
 OUTPUT_HEAD and the last OUTPUT_TAIL lines, each cut at OUTPUT_LINE_CHARS characters; when anything was
@@ -26,6 +32,27 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 
 STATUS_ORDER = ("crashed", "memory", "output", "timeout", "error", "missing", "graded")
+# All a hidden variant's result may say of its run, by how it ended.
+HIDDEN_RUN = {
+    "finished": "the program finished",
+    "time_limit": "the program ran until the time limit",
+    "error": "the program stopped with an error",
+    "hung": "the program got stuck, so it was stopped",
+    "timeout": "the program ran too long, so it was stopped",
+    "memory": "the program ran out of memory",
+    "output": "the program wrote too much to the console, so it was stopped",
+    "crashed": "the run crashed",
+    "not_started": "the program could not be started",
+}
+HIDDEN_RUN_OF_STATUS = {  # a variant's status -> the words a sealed hidden result falls back to
+    "graded": "finished",
+    "error": "error",
+    "timeout": "timeout",
+    "memory": "memory",
+    "output": "output",
+    "crashed": "crashed",
+    "missing": "not_started",
+}
 OUTPUT_HEAD = 100  # printed lines kept from the start of a run
 OUTPUT_TAIL = 100  # and from its end
 OUTPUT_LINE_CHARS = 300  # a longer line is cut, and ends with "…"
@@ -62,6 +89,15 @@ class VariantResult:
     output: list[str] | None = None
     output_trimmed: bool = False
     output_lines_dropped: int = 0
+
+    def __post_init__(self) -> None:
+        if self.hidden:  # sealed: see the module docstring
+            self.sim_time_s, self.output = None, None
+            self.output_trimmed, self.output_lines_dropped = False, 0
+            if self.message not in HIDDEN_RUN.values():
+                self.message = HIDDEN_RUN[HIDDEN_RUN_OF_STATUS.get(self.status, "crashed")]
+            for check in self.checks:
+                check.t_s = None
 
     @property
     def score(self) -> float:

@@ -6,16 +6,23 @@ variant passes.  A secondary check that passes while a goal check fails is `gate
 message says why ("counts only once the robot reaches the goal"); one that fails on its own says
 its own reason.  So a program that does nothing, or only prints, scores 0.
 
-A hidden variant's result tells no more than its score and what went wrong in words: it is named
-"hidden variant N", and its messages are the checks' `brief` ones, without times, distances or places.
+A hidden variant's result tells no more than its score, its status and which checks passed: it is named
+"hidden variant N"; how its run ended is one of result.HIDDEN_RUN, chosen by how the run ended only
+(never the exception's name or message, the exit code or a time: a program with 65 exceptions to choose
+from could spell out a hidden wall's distance in the one it raises); and each check says one sentence for
+any pass and one for any fail (its `hidden_words`, or "passed" / "did not pass (SUMMARY)"), never the
+outcome's own words, which may hold what the run did.  `hidden_texts(lesson)` is every sentence a hidden
+variant's result of the lesson can hold.
 """
 
 from __future__ import annotations
 
+import itertools
+
 from .check import Check, Outcome
-from .checks.finished import describe_error, stopped_with
+from .checks.finished import describe_error
 from .lesson import Lesson
-from .result import CheckResult, VariantResult
+from .result import HIDDEN_RUN, CheckResult, VariantResult
 from .run_record import RunRecord, seconds
 from .variant import STUDENT
 
@@ -29,33 +36,55 @@ RUN_STATUS = {
 GATED = "counts only once the robot reaches the goal"
 # why a hidden variant's run left nothing to judge, by status: the worker's own words may quote the console
 HIDDEN_NOT_RUN = {
-    "timeout": "the program ran too long, so it was stopped",
-    "memory": "the program used more memory than it may",
-    "output": "the program wrote too much to the console, so it was stopped",
-    "crashed": "the run crashed",
-    "error": "the program could not be started",
+    "timeout": HIDDEN_RUN["timeout"],
+    "memory": HIDDEN_RUN["memory"],
+    "output": HIDDEN_RUN["output"],
+    "crashed": HIDDEN_RUN["crashed"],
+    "error": HIDDEN_RUN["not_started"],
 }
+NOT_JUDGED = "not judged: {}"
 
 
 def run_message(record: RunRecord, status: str, memory_mb: float, hidden: bool = False) -> str:
-    """How the run ended, in a sentence for students (without times or the error's text in a hidden variant)."""
-    end = "" if hidden else f" at {seconds(record.end_s)}"
+    """How the run ended, in a sentence for students (in a hidden variant one of HIDDEN_RUN, by how it ended)."""
+    if hidden:
+        if status == "memory":
+            return HIDDEN_RUN["memory"]
+        return HIDDEN_RUN.get(record.status, HIDDEN_RUN["error"])
+    end = f" at {seconds(record.end_s)}"
     error = record.error or {}
     if status == "memory":
-        if hidden:
-            return "the program ran out of memory"
         return f"the program ran out of memory{end} (it may use {memory_mb:g} MB); line {error.get('line')}"
     if record.status == "error":
-        if hidden:
-            return stopped_with(error)
         return f"the program stopped with an error{end}: {describe_error(error)}"
     if record.status == "hung":
         return (
             f"the program got stuck{end} in a loop that never uses the robot or the clock, so it was stopped"
         )
     if record.status == "time_limit":
-        return "the program ran until the time limit" + ("" if hidden else f" of {seconds(record.end_s)}")
+        return f"the program ran until the time limit of {seconds(record.end_s)}"
     return f"the program finished{end}"
+
+
+def hidden_words(check: Check, passed: bool) -> str:
+    """A check's sentence in a hidden variant: the same for every pass, and for every fail (so it says no
+    more than pass or fail); a check kind without `hidden_words` says "passed" or its summary."""
+    words = getattr(check, "hidden_words", None)
+    if callable(words):
+        return str(words(bool(passed)))
+    return "passed" if passed else f"did not pass ({check.SUMMARY or check.KIND})"
+
+
+def hidden_texts(lesson: Lesson) -> set[str]:
+    """Every sentence a hidden variant's result of the lesson can hold: the run's words, each check's two
+    sentences, why a secondary check earned nothing, and why nothing was judged."""
+    texts = set(HIDDEN_RUN.values()) | {NOT_JUDGED.format(words) for words in HIDDEN_NOT_RUN.values()}
+    for check in lesson.checks:
+        texts |= {hidden_words(check, True), hidden_words(check, False)}
+    goals = [check.name for check in lesson.checks if check.goal]
+    for count in range(1, len(goals) + 1):
+        texts |= {gated_message(list(failed)) for failed in itertools.combinations(goals, count)}
+    return texts
 
 
 def gated_message(failed_goals: list[str]) -> str:
@@ -76,7 +105,7 @@ def check_results(
         if gated:
             message, t_s = gated_message(failed_goals), None
         elif hidden:
-            message, t_s = check.brief_of(found), None
+            message, t_s = hidden_words(check, passed), None
         else:
             message, t_s = found.message, None if found.t_s is None else round(float(found.t_s), 3)
         results.append(
@@ -116,7 +145,7 @@ def not_run(lesson: Lesson, variant_index: int, status: str, message: str) -> Va
     by its status: the message may quote what the program wrote to the console)."""
     variant = lesson.variants[variant_index]
     if variant.hidden:
-        message = HIDDEN_NOT_RUN.get(status, "the run left no result")
+        message = HIDDEN_NOT_RUN.get(status, HIDDEN_RUN["crashed"])
     several = lesson.several_robots
     checks = [
         CheckResult(
@@ -125,7 +154,7 @@ def not_run(lesson: Lesson, variant_index: int, status: str, message: str) -> Va
             False,
             0.0,
             c.points,
-            f"not judged: {message}",
+            NOT_JUDGED.format(message),
             goal=c.goal,
             robot=(c.robot or STUDENT) if several else None,
         )

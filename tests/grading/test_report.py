@@ -125,12 +125,12 @@ def test_a_hidden_variant_shows_its_score_and_what_went_wrong_in_words_only(clas
         assert all(c.t_s is None for c in hidden.checks)
     details_of = texts["details"]
     assert "hidden variant 1: 0/5, failed — the robot never reached the goal" in details_of
-    assert (
-        "hidden variant 1: 0/5, failed — the program stopped with an error (ZeroDivisionError)" in details_of
-    )
+    assert "hidden variant 1: 0/5, failed — the program stopped with an error" in details_of
+    hidden_lines = [line for line in details_of.splitlines() if line.lstrip().startswith("hidden variant")]
+    assert hidden_lines and not any("Error" in line for line in hidden_lines)  # which error: the program's choice
     erin = grading.results[4]
     assert "12.5 cm" in erin.variants[0].message  # a visible variant shows the error in full
-    assert erin.variants[1].message == "the program stopped with an error (ValueError)"
+    assert erin.variants[1].message == "the program stopped with an error"
     fred = grading.results[5]  # an exception class of its own could be named after what it measured
     assert "WallAt12cm" in fred.variants[0].message
     assert fred.variants[1].message == "the program stopped with an error"

@@ -22,6 +22,12 @@ class AvoidRegion(Check):
         POINT_PARAM,
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        name = self.label or f"the {self.region}"
+        return f"{what(self.point)} {'kept out of' if passed else 'went into'} {name}"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         name = self.label or f"the {self.region}"
         inside = np.flatnonzero(region_inside(run.world, self.region, run.track(self.point)))

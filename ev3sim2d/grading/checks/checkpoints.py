@@ -34,6 +34,17 @@ class Checkpoints(Check):
     def validate(self, world, variant):
         validate_places(self, self.places, world, variant, "places")
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        who = what(self.point)
+        order = " in order" if self.in_order and len(self.places) > 1 else ""
+        if passed:
+            return f"{who} passed every checkpoint{order}"
+        return f"{who} did not pass every checkpoint{order}" + (
+            " in time" if self.within_s is not None else ""
+        )
+
     def evaluate(self, run: RunRecord) -> Outcome:
         track = run.track(self.point)
         who = what(self.point)

@@ -29,17 +29,28 @@ class EndHeading(Check):
         Param("within_deg", "degrees", "the largest difference that passes", default=5.0),
     )
 
+    def wanted_name(self) -> str:
+        """The wanted heading in words, from the check's parameters alone."""
+        if self.heading_deg is not None:
+            return f"a heading of {self.heading_deg:g}°"
+        turn = self.from_start_deg or 0.0
+        if turn == 0:
+            return "its start heading"
+        return f"{abs(turn):g}° {'left' if turn > 0 else 'right'} of its start heading"
+
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        name = self.wanted_name()
+        return f"ended facing {name}" if passed else f"did not end facing {name}"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         final = float(run.heading_deg[-1])
+        name = self.wanted_name()
         if self.heading_deg is not None:
-            wanted, name = self.heading_deg, f"a heading of {self.heading_deg:g}°"
+            wanted = self.heading_deg
         else:
-            turn = self.from_start_deg or 0.0
-            wanted = run.start[2] + turn
-            if turn == 0:
-                name = "its start heading"
-            else:
-                name = f"{abs(turn):g}° {'left' if turn > 0 else 'right'} of its start heading"
+            wanted = run.start[2] + (self.from_start_deg or 0.0)
         off = angle_between(final, wanted)
         side = "left" if off > 0 else "right"
         end = run.end_s

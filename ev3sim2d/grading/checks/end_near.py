@@ -39,6 +39,12 @@ class EndNear(Check):
     def validate(self, world, variant):
         validate_places(self, [self.place], world, variant, "place")
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        who, name = what(self.point), self.place.describe()
+        return f"{who} ended at {name}" if passed else f"{who} did not end at {name}"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         end = run.end_s
         distance = float(self.place.center_distance(run, run.track(self.point)[-1:])[0])

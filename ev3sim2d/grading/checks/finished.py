@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import builtins
-
 from ..check import Check, Outcome, Param, register
 from ..run_record import RunRecord, seconds
 
@@ -15,16 +13,6 @@ def describe_error(error: dict) -> str:
     return f"{error.get('type', 'an error')}{message}{where}"
 
 
-def stopped_with(error: dict | None) -> str:
-    """'the program stopped with an error (ZeroDivisionError)', naming the type only if it is Python's own or
-    ev3dev2's DeviceNotFound: all a hidden variant's result may say (a program could name an exception
-    class of its own after what it measured, or put it in the message)."""
-    name = str((error or {}).get("type") or "")
-    kind = getattr(builtins, name, None)
-    known = name == "DeviceNotFound" or (isinstance(kind, type) and issubclass(kind, BaseException))
-    return f"the program stopped with an error ({name})" if known else "the program stopped with an error"
-
-
 @register
 class Finished(Check):
     """The program ends on its own, without an error, and (with `within_s`) in time."""
@@ -34,6 +22,14 @@ class Finished(Check):
     PASSES_WITHOUT_MOVING = True
     PARAMS = (Param("within_s", "seconds", "the program must end by this simulated time", default=None),)
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        if passed:
+            return "the program finished"
+        in_time = " in time" if self.within_s is not None else ""
+        return f"the program did not end by itself{in_time} without an error"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         end = run.end_s
         if run.status == "error":
@@ -41,7 +37,7 @@ class Finished(Check):
                 False,
                 f"the program stopped with an error at {seconds(end)}: {describe_error(run.error)}",
                 end,
-                stopped_with(run.error),
+                "the program stopped with an error",
             )
         if run.status == "hung":
             return Outcome(

@@ -22,6 +22,13 @@ class Lap(Check):
         Param("within_s", "seconds", "the lap must be complete by this simulated time", default=None),
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        if passed:
+            return "completed a lap"
+        return "did not complete a lap" + (" in time" if self.within_s is not None else "")
+
     def evaluate(self, run: RunRecord) -> Outcome:
         x0, y0, _ = run.start
         xy = run.xy

@@ -50,6 +50,11 @@ class OnLine(Check):
         replace(POINT_PARAM, default="color-sensor"),
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        return "stayed over the line" if passed else "did not stay over the line"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         track = run.track(self.point)
         grid = run.world.grid

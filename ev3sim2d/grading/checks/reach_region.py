@@ -26,6 +26,17 @@ class ReachRegion(Check):
         POINT_PARAM,
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        name = self.label or f"the {self.region}"
+        who = what(self.point)
+        if passed:
+            return f"{who} reached {name}"
+        return (
+            f"{who} never reached {name}" if self.within_s is None else f"{who} did not reach {name} in time"
+        )
+
     def evaluate(self, run: RunRecord) -> Outcome:
         name = self.label or f"the {self.region}"
         distance = region_distance(run.world, self.region, run.track(self.point))

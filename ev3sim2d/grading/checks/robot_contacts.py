@@ -18,6 +18,17 @@ class RobotContacts(Check):
     PASSES_WITHOUT_MOVING = True  # (unless another robot runs into it: still never a goal)
     PARAMS = (Param("max", "count", "the most contacts that pass (0: never touch another robot)", default=0),)
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        if self.max == 0:
+            return "never touched another robot" if passed else "the robot touched another robot"
+        return (
+            "touched other robots, within what passes"
+            if passed
+            else "the robot touched other robots too often"
+        )
+
     def evaluate(self, run: RunRecord) -> Outcome:
         touching = run.touching_robot
         starts = np.flatnonzero(touching[1:] & ~touching[:-1]) + 1

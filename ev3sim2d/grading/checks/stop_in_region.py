@@ -19,6 +19,13 @@ class StopInRegion(Check):
         POINT_PARAM,
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        name = self.label or f"the {self.region}"
+        who = what(self.point)
+        return f"{who} stopped in {name}" if passed else f"{who} did not stop in {name}"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         name = self.label or f"the {self.region}"
         track = run.track(self.point)

@@ -16,6 +16,13 @@ class Stopped(Check):
     PARAMS = (Param("by_s", "seconds", "the robot must not move after this simulated time", default=None),)
     PASSES_WITHOUT_MOVING = True
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        if passed:
+            return "the robot stopped"
+        return "the robot did not stop" + (" in time" if self.by_s is not None else "")
+
     def evaluate(self, run: RunRecord) -> Outcome:
         end = run.end_s
         if run.driving_at_end():

@@ -21,6 +21,13 @@ class WallContacts(Check):
         Param("max_touch_s", "seconds", "the longest total time touching walls that passes", default=None),
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        if self.max == 0 and self.max_touch_s is None:
+            return "never touched a wall" if passed else "the robot touched a wall"
+        return "touched walls, within what passes" if passed else "the robot touched walls more than passes"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         touching = run.touching
         starts = np.flatnonzero(touching[1:] & ~touching[:-1]) + 1

@@ -28,6 +28,11 @@ class WallDistance(Check):
         ),
     )
 
+    def hidden_words(self, passed: bool) -> str:
+        """What a hidden variant's result says: one sentence for every run that passes, one for every run
+        that fails (scoring.py), so that it tells no more than pass or fail."""
+        return ("ended" if passed else "did not end") + " at the right distance from the wall ahead"
+
     def evaluate(self, run: RunRecord) -> Outcome:
         x, y, heading = (float(v) for v in run.poses[-1])
         spec = run.world.robot
