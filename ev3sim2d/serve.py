@@ -17,9 +17,10 @@ import socket
 from collections.abc import Sequence
 
 from .protocol import ProtocolError
+from .protocol.stream import send_timeout
 from .simulator.brick_port import BrickPort
 from .simulator.bricks import BrickLimits
-from .simulator.lobby import Guest, Lobby, send_timeout
+from .simulator.lobby import Guest, Lobby
 from .simulator.run import RunResult, new_simulation, play, robot_names, run_result, take_hello
 from .world.robot_spec import RobotSpec
 from .world.world import World

@@ -292,3 +292,11 @@ def test_datetime_now_follows_the_virtual_clock(run):
     """)
     assert result.trace.output[0].text == "2025-01-01T00:00:03 2025-01-01"
     assert datetime.datetime.now().year >= 2026  # outside the run, the real clock
+
+
+def test_a_line_with_a_lone_surrogate_as_a_file_name_may_hold_is_printed_not_a_protocol_breach(run):
+    """os.listdir gives a file name that is not UTF-8 as text with a lone surrogate; printing it is
+    honest, and must not end the brick (its message went as surrogatepass and came back strict)."""
+    result = run('print("a\\udce9b")\n')
+    assert result.status == "finished", result.reason
+    assert result.trace.output[0].text == "a\udce9b"

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from .device import Device, invalid, parse_int
+from .device import C_ULONG_MAX, Device, int_rule, invalid, parse_int
+
+TRIGGERS = ("none", "timer", "heartbeat")  # the triggers the simulated brick lists
 
 
 class Led(Device):
@@ -18,25 +20,25 @@ class Led(Device):
         self.readers.update(
             brightness=lambda: str(self.brightness),
             max_brightness=lambda: "255",
-            trigger=lambda: " ".join(
-                f"[{t}]" if t == self.trigger else t for t in ("none", "timer", "heartbeat")
-            ),
+            trigger=lambda: " ".join(f"[{t}]" if t == self.trigger else t for t in TRIGGERS),
         )
         self.writers.update(brightness=self._set_brightness, trigger=self._set_trigger)
-        self.write_rules.update(brightness=["int", 0, None], trigger=["any"])
+        # led-class.c: brightness is parsed with kstrtoul and capped at max_brightness; a trigger must be
+        # one the kernel lists (led_trigger_write: -EINVAL otherwise)
+        self.write_rules.update(brightness=int_rule(0, C_ULONG_MAX), trigger=["choice", list(TRIGGERS)])
         self.constants = {"max_brightness"}
         self.settings = {"brightness", "trigger"}
         self.readers.pop("address")
         self.readers.pop("driver_name")
 
     def _set_brightness(self, value: str) -> None:
-        b = parse_int(value)
-        if b < 0:
-            raise invalid(value)
-        self.brightness = min(b, 255)
+        self.brightness = min(parse_int(value, 0, C_ULONG_MAX), 255)
 
     def _set_trigger(self, value: str) -> None:
-        self.trigger = value.strip()
+        trigger = value.strip()
+        if trigger not in TRIGGERS:
+            raise invalid(value)
+        self.trigger = trigger
 
 
 class Battery(Device):

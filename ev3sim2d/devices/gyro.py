@@ -37,7 +37,7 @@ class GyroSensor(LegoSensor):
         self.writers["direct"] = self._direct
 
     def _direct(self, value: str) -> None:
-        if value.encode("latin-1") != b"\x11":
+        if value != "\x11":  # the byte 0x11, as the brick sends bytes (decoded as latin-1)
             raise invalid(value)
         self.reset()
 

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 
-from .device import Device, invalid, parse_int
+from .device import Device, int_rule, invalid, parse_int
 
 # ev3dev tacho-motor figures for the EV3 motors (driver name, max_speed in deg/s, hold_pid/Kp)
 KINDS = {
@@ -104,7 +104,7 @@ class TachoMotor(Device):
             polarity=self._set_polarity,
             stop_action=self._set_stop_action,
             speed_sp=self._set_speed_sp,
-            position_sp=lambda v: setattr(self, "position_sp", parse_int(v)),
+            position_sp=lambda v: setattr(self, "position_sp", parse_int(v)),  # (a C int's range)
             time_sp=self._set_time_sp,
             duty_cycle_sp=self._set_duty_cycle_sp,
             ramp_up_sp=lambda v: setattr(self, "ramp_up_sp", self._ramp(v)),
@@ -118,14 +118,14 @@ class TachoMotor(Device):
             command=["choice", list(COMMANDS)],
             polarity=["choice", ["normal", "inversed"]],
             stop_action=["choice", list(STOP_ACTIONS)],
-            speed_sp=["int", -max_speed, max_speed],
-            position_sp=["int", None, None],
-            time_sp=["int", 0, None],
-            duty_cycle_sp=["int", -100, 100],
-            ramp_up_sp=["int", 0, 60000],
-            ramp_down_sp=["int", 0, 60000],
-            position=["int", None, None],
-            **{pid: ["int", 0, None] for pid in self.pid},
+            speed_sp=int_rule(-max_speed, max_speed),
+            position_sp=int_rule(),
+            time_sp=int_rule(0),
+            duty_cycle_sp=int_rule(-100, 100),
+            ramp_up_sp=int_rule(0, 60000),
+            ramp_down_sp=int_rule(0, 60000),
+            position=int_rule(),
+            **{pid: int_rule(0) for pid in self.pid},
         )
 
     # ------------------------------------------------------------ attributes
@@ -194,36 +194,22 @@ class TachoMotor(Device):
         self.stop_action = value
 
     def _set_speed_sp(self, value: str) -> None:
-        speed = parse_int(value)
-        if abs(speed) > self.max_speed:
-            raise invalid(value)
-        self.speed_sp = speed
+        self.speed_sp = parse_int(value, -self.max_speed, self.max_speed)
 
     def _set_time_sp(self, value: str) -> None:
-        t = parse_int(value)
-        if t < 0:
-            raise invalid(value)
-        self.time_sp = t
+        self.time_sp = parse_int(value, 0)
 
     def _set_duty_cycle_sp(self, value: str) -> None:
-        duty = parse_int(value)
-        if abs(duty) > 100:
-            raise invalid(value)
-        self.duty_cycle_sp = duty
+        self.duty_cycle_sp = parse_int(value, -100, 100)
 
     @staticmethod
     def _ramp(value: str) -> int:
-        ms = parse_int(value)
-        if not 0 <= ms <= 60000:
-            raise invalid(value)
-        return ms
+        return parse_int(value, 0, 60000)
 
     @staticmethod
     def _gain(value: str) -> int:
-        k = parse_int(value)
-        if k < 0:  # tacho_motor_class.c, PID_ATTR_FUNCS: "if (k < 0) return -EINVAL;"
-            raise invalid(value)
-        return k
+        # tacho_motor_class.c, PID_ATTR_FUNCS: kstrtoint, then "if (k < 0) return -EINVAL;"
+        return parse_int(value, 0)
 
     # -------------------------------------------------------------- commands
     def _command(self, value: str) -> None:

@@ -45,6 +45,12 @@ class Surroundings(Protocol):
     def near(self, x: float, y: float, reach_cm: float) -> bool: ...
 
 
+SAMPLES_PER_TICK = 6
+"""Measurements of one sensor the trace records per tick.  An honest program changes a sensor's mode (a
+3 ms write) at most four times in a 10 ms tick, so records at most five; a brick that sends writes
+without spending time gets its later measurements served but only the tick's last one recorded in the
+last place, so that the trace grows with virtual time only."""
+
 _FORMATS = {"u8": "B", "s8": "b", "u16": "H", "s16": "h", "s16_be": ">h", "s32": "i", "float": "f"}
 
 
@@ -93,6 +99,7 @@ class LegoSensor(Device):
         self._sample_mode = ""
         self._sample: tuple[int, ...] = ()
         self.samples: list[tuple[int, str, tuple[int, ...]]] = []  # (tick, mode, values) of every measurement
+        self._recorded = (-1, 0)  # the tick of the last sample recorded, and how many were in that tick
         r, w = self.readers, self.writers
         r.update(
             mode=lambda: self.mode,
@@ -148,8 +155,20 @@ class LegoSensor(Device):
             self._sample = tuple(sample)
             self._sample_tick = around.tick
             self._sample_mode = self.mode
-            self.samples.append((around.tick, self.mode, self._sample))
+            self._record((around.tick, self.mode, self._sample))
         return self._sample
+
+    def _record(self, sample: tuple[int, str, tuple[int, ...]]) -> None:
+        """Add a measurement to the samples, at most SAMPLES_PER_TICK a tick (then the last is replaced)."""
+        tick, count = self._recorded
+        if tick != sample[0]:
+            tick, count = sample[0], 0
+        if count < SAMPLES_PER_TICK:
+            self.samples.append(sample)
+            count += 1
+        else:
+            self.samples[-1] = sample
+        self._recorded = (tick, count)
 
     def _value(self, n: int) -> str:
         values = self.values()

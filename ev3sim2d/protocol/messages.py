@@ -80,7 +80,7 @@ def encode(message: list) -> bytes:
 def decode(line: bytes) -> list:
     """One line back into a message; ProtocolError for anything that is not a JSON array led by a kind."""
     try:
-        text = line.decode("utf-8")
+        text = line.decode("utf-8", "surrogatepass")  # (as encode writes a lone surrogate: a file name's)
         try:  # the scanner alone: json.loads adds two regular expressions and three calls
             message, end = _scan(text, 0)
         except StopIteration:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import select
 import socket
+import struct
 import time
 
 from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode, encode
@@ -192,6 +193,21 @@ class Channel:
             self.sock.close()
         except OSError:
             pass
+
+
+def send_timeout(sock: socket.socket, seconds: float) -> None:
+    """Sending fails (and so drops the connection) when the other side takes no data for this long; the
+    kernel's timeout, which leaves reads alone.  Windows takes it as a DWORD of milliseconds, POSIX
+    systems as a struct timeval, which refuse the shorter form: so the DWORD is tried first."""
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDTIMEO, max(1, int(seconds * 1000)))
+        return
+    except OSError:
+        pass
+    whole = int(seconds)
+    sock.setsockopt(
+        socket.SOL_SOCKET, socket.SO_SNDTIMEO, struct.pack("ll", whole, int((seconds - whole) * 1e6))
+    )
 
 
 def wait_for_any(channels: list[Channel], timeout_s: float) -> list[Channel]:

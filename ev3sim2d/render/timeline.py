@@ -13,9 +13,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..results.trace import MOTOR_COLUMNS, POSE_COLUMNS, OutputLine, Trace
+from ..results.trace import (
+    EVENTS,
+    MOTOR_COLUMNS,
+    NOTES_PER_SOUND,
+    POSE_COLUMNS,
+    SOUND_NOTES,
+    SOUND_NUMBERS,
+    SOUND_SECONDS,
+    OutputLine,
+    Trace,
+)
 
 _EPS_S = 1e-9  # frame times are sums of floats: t = 0.1 must find the tick that ended at 0.1
+_SOUND_BUCKET_S = 1.0  # sounds_at looks among the sounds playing in the second of t only
 
 
 @dataclass(frozen=True)
@@ -56,7 +67,10 @@ class Timeline:
         self._led_states: list[list[dict]] = [[] for _ in trace.robots]
         self._lcd_times: list[list[float]] = [[] for _ in trace.robots]
         self._lcd_frames: list[list[int]] = [[] for _ in trace.robots]
-        for t, robot, kind, data in trace.events:
+        for event in trace.events:
+            t, robot, kind, data = event if len(event) == 4 else (0.0, -1, "", None)
+            if type(robot) is not int or not 0 <= robot < self.robot_count:
+                continue  # (a hand-made trace's nonsense, or a change to the world: robot -1)
             if kind == "leds":
                 self._led_times[robot].append(t)
                 self._led_states[robot].append(data)
@@ -64,6 +78,11 @@ class Timeline:
                 self._lcd_times[robot].append(t)
                 self._lcd_frames[robot].append(data["frame"])
         self.sounds = sound_spans(trace)
+        self._sound_buckets: dict[tuple[int, int], list[SoundSpan]] = {}  # (robot, second) -> its sounds
+        for span in self.sounds:  # (a budget's worth of sounds: at most SOUND_SECONDS long, all added up)
+            first = int(span.start_s // _SOUND_BUCKET_S)
+            for second in range(first, max(int(span.end_s // _SOUND_BUCKET_S), first) + 1):
+                self._sound_buckets.setdefault((span.robot, second), []).append(span)
         self._output_times = [line.t_s for line in trace.output]
 
         touching = POSE_COLUMNS.index("touching")
@@ -141,11 +160,21 @@ class Timeline:
 
     def sounds_at(self, robot: int, t_s: float) -> list[SoundSpan]:
         """The robot's sounds playing at t_s."""
-        return [s for s in self.sounds if s.robot == robot and s.start_s <= t_s + _EPS_S < s.end_s]
+        near = self._sound_buckets.get((robot, int((t_s + _EPS_S) // _SOUND_BUCKET_S)), ())
+        return [s for s in near if s.start_s <= t_s + _EPS_S < s.end_s]
 
     def printed(self, t_s: float) -> list[OutputLine]:
         """The lines printed at or before t_s."""
         return self.trace.output[: bisect_right(self._output_times, t_s + _EPS_S)]
+
+
+def _number(value, key: str, default: float) -> float:
+    """A sound's number as the trace holds it, within its range (SOUND_NUMBERS); the default for anything
+    else (a hand-made trace may hold text, NaN or 10**9 repeats)."""
+    low, high = SOUND_NUMBERS[key]
+    if type(value) not in (int, float) or value != value:
+        return default
+    return float(min(max(value, low), high))
 
 
 def sound_spans(trace: Trace) -> list[SoundSpan]:
@@ -154,42 +183,57 @@ def sound_spans(trace: Trace) -> list[SoundSpan]:
     A `beep` plays its notes one after another, each `repeats` times, with
     `delay_ms` between repeats (and after the last with `end_delay`), as the
     `beep` program does; volume is the robot's last `set_volume` (100 % at first).
+    A run's sounds are played within its budgets (results/trace.py), whatever the trace holds (one made
+    before the budgets, or by hand): each robot's first SOUND_NOTES tones, EVENTS speeches and sound
+    files, and SOUND_SECONDS of sound in all; the rest is left out.
     """
     spans: list[SoundSpan] = []
-    volume = [1.0] * len(trace.robots)
-    for t, robot, kind, data in trace.events:
-        if kind != "sound":
+    count = len(trace.robots)
+    volume = [1.0] * count
+    tones, others, seconds = [0] * count, [0] * count, [0.0] * count
+    for event in trace.events:
+        if type(event) is not list or len(event) != 4:
             continue
+        t, robot, kind, data = event
+        if kind != "sound" or type(robot) is not int or not 0 <= robot < count or type(data) is not dict:
+            continue
+        if type(t) not in (int, float) or not 0 <= t <= 1e9:  # (a time a float holds, not NaN)
+            continue
+        t = float(t)
         sound = data.get("kind")
         if sound == "set_volume":
-            volume[robot] = max(0.0, min(1.0, float(data.get("pct", 100)) / 100))
-        elif sound == "beep":
+            volume[robot] = _number(data.get("pct", 100), "pct", 100.0) / 100
+        elif sound == "beep" and tones[robot] < SOUND_NOTES and seconds[robot] < SOUND_SECONDS:
             at = t
-            for note in data.get("notes", []):
-                repeats = max(int(note.get("repeats", 1)), 0)
-                length = float(note.get("length_ms", 200)) / 1000
-                delay = float(note.get("delay_ms", 100)) / 1000
+            notes = data.get("notes")
+            for note in notes[:NOTES_PER_SOUND] if type(notes) is list else ():
+                if type(note) is not dict:
+                    continue
+                repeats = int(_number(note.get("repeats", 1), "repeats", 1))
+                length = _number(note.get("length_ms", 200), "length_ms", 200.0) / 1000
+                delay = _number(note.get("delay_ms", 100), "delay_ms", 100.0) / 1000
+                frequency = _number(note.get("frequency", 440), "frequency", 440.0)
                 for r in range(repeats):
-                    spans.append(
-                        SoundSpan(
-                            robot,
-                            at,
-                            at + length,
-                            "tone",
-                            float(note.get("frequency", 440)),
-                            "",
-                            volume[robot],
-                        )
-                    )
+                    if tones[robot] >= SOUND_NOTES or seconds[robot] + length > SOUND_SECONDS:
+                        break
+                    tones[robot] += 1
+                    seconds[robot] += length
+                    spans.append(SoundSpan(robot, at, at + length, "tone", frequency, "", volume[robot]))
                     at += length
                     if r < repeats - 1 or note.get("end_delay"):
                         at += delay
-        elif sound in ("speak", "play_file"):
+        elif sound in ("speak", "play_file") and others[robot] < EVENTS:
+            duration = _number(data.get("duration") or 0.0, "duration", 0.0)
+            if seconds[robot] + duration > SOUND_SECONDS:
+                continue
+            others[robot] += 1
+            seconds[robot] += duration
             text = (
-                data.get("text", "") if sound == "speak" else os.path.basename(str(data.get("wav_file", "")))
+                str(data.get("text", ""))[:500]
+                if sound == "speak"
+                else os.path.basename(str(data.get("wav_file", ""))[:500])
             )
-            level = float(data.get("volume", 100)) / 100 * volume[robot]
-            duration = max(float(data.get("duration") or 0.0), 0.0)
+            level = _number(data.get("volume", 100), "volume", 100.0) / 100 * volume[robot]
             spans.append(
                 SoundSpan(robot, t, t + duration, "speech" if sound == "speak" else "file", 0.0, text, level)
             )

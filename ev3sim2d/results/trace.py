@@ -27,6 +27,90 @@ POSE_COLUMNS = ("x_cm", "y_cm", "heading_deg", "touching", "touching_robot")
 OLD_POSE_COLUMNS = 4  # traces saved before "touching_robot" was recorded: loaded with it 0 throughout
 MOTOR_COLUMNS = ("position", "speed", "state")
 
+# ------------------------------------------------------------------------------------------ budgets
+# What one robot's brick may make the simulator keep, do and render in one run.  A brick is a student's
+# program: the protocol bounds one message (8 MiB), these bound what its messages add up to.  The
+# simulator's end of the brick (simulator/brick_port.py) ends that brick's run at the first budget it
+# exceeds, with a reason that names it, and the run goes on for the other robots; the renderer
+# (render/timeline.py, audio.py) plays a trace made without them (an older run's, one made by hand)
+# within the sound budgets.  The motion table and the sensor samples need no budget: they grow with
+# virtual time only (one row per tick; at most SAMPLES_PER_TICK samples of a sensor per tick,
+# devices/sensor.py), which the run's time limit bounds.  docs/grading-security.md (Budgets) has the table.
+
+PRINTED_LINES = 20_000
+"""Lines a program may print in a run.  A program that logs its sensors every 10 ms for 60 s prints
+6,000; printing costs a brick 1 ms a line, so no honest 60 s run prints more than 60,000."""
+
+PRINTED_BYTES = 2_000_000
+"""Bytes a program may print in a run (UTF-8, counted as sent, before long lines are cut): the 10 ms
+logger's 6,000 lines of some 60 characters are 360 kB."""
+
+PRINTED_LINE_CHARS = 2_000
+"""Characters of one printed line that are kept; the rest is cut (and the cut said).  Not a budget."""
+
+EVENTS = 20_000
+"""Sounds, LED changes and LCD frames a brick may record in a run, together.  A program that turns
+both LEDs red and green every 100 ms records 2,400 a minute, one that beeps every 100 ms 600, one that
+draws a changing screen all the time 1,200 (see LCD_FRAMES)."""
+
+LCD_FRAMES = 3_000
+"""Different LCD pictures a brick may leave in a run (178 x 128 bytes each: 68 MB at most).  A picture is
+kept as the EV3's screen shows it: at most one per LCD_REFRESH_US (a draw within the refresh of the last
+picture kept replaces it), and a picture like the last one is not kept again; a program that draws a
+screen that changes every tick for 60 s keeps 1,200."""
+
+LCD_REFRESH_US = 50_000
+"""How often the EV3's screen shows a new picture at most: the st7586 LCD driver's update delay, HZ / 20."""
+
+LCD_DRAWS_PER_REFRESH = 4
+"""Draws of the LCD within one refresh that are events of their own (each counting in EVENTS); a later
+one within it moves the last to its time and picture.  A loop that draws after each 2 ms read draws 25
+times a refresh, which the screen could not show either.  Not a budget."""
+
+SOUND_NOTES = 10_000
+"""Notes a brick's beeps may hold in a run, a note's repeats each counting as one (a video synthesises
+each): a song of 100 notes is 100, a beep every 10 ms for 60 s is 6,000.  One beep holds at most
+NOTES_PER_SOUND notes."""
+
+NOTES_PER_SOUND = 100
+"""Notes one beep may hold (the notes beyond are not kept).  Not a budget: a cut, as for a line."""
+
+SOUND_NUMBERS = {
+    "frequency": (0.0, 20_000.0),
+    "length_ms": (0.0, 60_000.0),
+    "delay_ms": (0.0, 60_000.0),
+    "repeats": (0, 100),
+    "duration": (0.0, 3_600.0),
+    "volume": (0.0, 100.0),
+    "pct": (0.0, 100.0),
+    "play_type": (0, 10),
+}
+"""The range of each number a sound event holds (a note's: frequency to repeats): the brick port keeps
+a sound's numbers within them, and the renderer a hand-made trace's.  Not a budget."""
+
+SOUND_SECONDS = 600.0
+"""Seconds of sound a brick may play in a run, all added up: its beeps' tones (which a video synthesises)
+and its speech and sound files (which a video captions while they play).  A 60 s run that beeps all the
+time plays 60, a song in a sound file some 200; ten times the first leaves room for sounds started
+without waiting for the last."""
+
+KEYS = 10_000
+"""Device attributes a brick may name in a run (its keys; each names a different one): a robot has
+about 200 (4 motors and 4 sensors of some 20 attributes, the LEDs, the battery)."""
+
+NAME_CHARS = 255
+"""Characters of a class, device or attribute name: a longer one cannot be a sysfs file (NAME_MAX), and
+is answered ENAMETOOLONG without being kept.  Not a budget."""
+
+OPS_BURST = 20_000
+"""Operations a brick may send at any moment of its clock; OPS_PER_SECOND more for each second of it."""
+
+OPS_PER_SECOND = 20_000
+"""Operations a brick may send for each second of its virtual clock, beyond OPS_BURST.  Each operation
+an honest program sends costs it virtual time (2 ms a read, 3 ms a write, 1 ms a printed line) but its
+calls to the speaker and the LCD: the busiest honest loop sends about 1,000 a second.  Without it a
+brick whose clock stands still, or creeps on by a microsecond, could keep the simulator busy for ever."""
+
 
 @dataclass
 class OutputLine:

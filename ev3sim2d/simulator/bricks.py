@@ -42,6 +42,7 @@ from ..protocol import PROTOCOL, Channel, SharedChannel
 from ..protocol.loopback import LoopbackListener
 from ..protocol.shared_memory import available as shared_memory_available
 from ..protocol.shared_memory import create_memory
+from ..protocol.stream import send_timeout
 from . import job_object, memory_watch, sandbox_exec
 from .scratch import open_console, remove_tree, tail
 
@@ -54,6 +55,7 @@ UNPRIVILEGED_UID = 65534
 PYTHON_P = ["-P"] if sys.version_info >= (3, 11) else []  # (boot.py takes its own folder off sys.path too)
 SPIN_S = 0.002  # how long a side spins before it sleeps: waking a sleeper costs about 100 us here
 START_TIMEOUT_S = 60.0  # a brick on loopback TCP must connect within this much real time
+SEND_TIMEOUT_S = 10.0  # a brick that takes nothing the simulator sends for this long is dropped
 PORTABLE = "EV3SIM2D_PORTABLE"
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
@@ -411,6 +413,9 @@ def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) 
         channel = SharedChannel(ours, os.dup(memory_fd), simulator=True, spin_s=SPIN_S if spin else 0.0)
         os.close(memory_fd)
     else:
+        send_timeout(
+            ours, SEND_TIMEOUT_S
+        )  # (a brick that never reads its replies is dropped, not waited for)
         channel = Channel(ours, spin_s=SPIN_S if spin else 0.0)
     return BrickProcess(popen, channel, scratch, console, outside=_outside_layers(None))
 
@@ -451,6 +456,7 @@ def _start_over_loopback(scratch, console: int, spin, limits: BrickLimits) -> Br
         ours, theirs = socket.socketpair()
         theirs.close()
         channel = Channel(ours)
+    send_timeout(channel.sock, SEND_TIMEOUT_S)  # (a brick that never reads its replies is dropped)
     outside.update(_outside_layers(job))
     return BrickProcess(popen, channel, scratch, console, job=job, outside=outside)
 

@@ -18,7 +18,6 @@ import errno
 import hmac
 import select
 import socket
-import struct
 import threading
 import time
 from collections.abc import Callable
@@ -26,6 +25,7 @@ from dataclasses import dataclass, field
 
 from ..protocol import PROTOCOL, Channel, ConnectionGone, ProtocolError, encode
 from ..protocol.joining import MAX_JOIN_BYTES, check_join
+from ..protocol.stream import send_timeout
 
 JOIN_TIMEOUT_S = 10.0  # a connection says who it is within this much time
 START_TIMEOUT_S = 60.0  # its brick greets within this much time (an interpreter starting on a slow laptop)
@@ -270,21 +270,6 @@ class Lobby:
             _close(self.listener)
         for guest in self.guests:
             _close(guest.sock)
-
-
-def send_timeout(sock: socket.socket, seconds: float) -> None:
-    """Sending fails (and so drops the connection) when the other side takes no data for this long; the
-    kernel's timeout, which leaves reads alone.  Windows takes it as a DWORD of milliseconds, POSIX
-    systems as a struct timeval, which refuse the shorter form: so the DWORD is tried first."""
-    try:
-        sock.setsockopt(socket.SOL_SOCKET, socket.SO_SNDTIMEO, max(1, int(seconds * 1000)))
-        return
-    except OSError:
-        pass
-    whole = int(seconds)
-    sock.setsockopt(
-        socket.SOL_SOCKET, socket.SO_SNDTIMEO, struct.pack("ll", whole, int((seconds - whole) * 1e6))
-    )
 
 
 def is_loopback(host: str) -> bool:

@@ -327,7 +327,7 @@ def _robot_end(port: BrickPort, error: dict | None, brick: BrickProcess | None, 
     interruption, a crash)."""
     end = port.end or {}
     if port.gone == "hung":
-        what = "the program ran" if brick is not None else "the program's computer sent nothing"
+        what = "the program ran" if brick is not None else "the program on the other computer ran"
         reason = (
             f"stopped: {what} for a while without using the robot or the clock "
             f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"

@@ -7,8 +7,15 @@ and the bricks waiting there get their snapshot.  Between ticks a brick's ops
 touch only its own robot's devices, so the bricks' ops between two ticks can
 be applied brick by brick: the run depends only on what the programs do, never
 on which process was faster.  The simulator never waits for a brick that is
-ahead; a brick that is behind and silent for `hang_after_s` of real time (a
-program spinning without using the robot or the clock) is stopped.  A robot whose
+ahead; a brick that is behind and whose clock does not move for `hang_after_s`
+of real time that the simulator spent waiting for it or applying its ops (a
+program spinning without using the robot or the clock, or one that sends
+heartbeats, lines or calls that do not move its clock) is stopped as hung; the
+time a brick waits for the world, or for the simulator busy with other bricks,
+is never held against it.  What a brick sends is applied in one place
+(`_apply`), where whatever goes wrong ends that brick only: a breach of the
+protocol, a budget (results/trace.py), or the simulator's own failure on its
+ops, which is reported loudly.  A robot whose
 program ended (or whose brick was dropped) while others run on is let go, as an
 EV3's brickman does when a program ends: its motors are reset (Simulation.let_go).
 """
@@ -16,21 +23,27 @@ EV3's brickman does when a program ends: its motors are reset (Simulation.let_go
 from __future__ import annotations
 
 import gc
+import sys
 import time
+import traceback
+from collections.abc import Callable
 
 from ..protocol import ConnectionGone, ProtocolError, wait_for_any
 from ..protocol.stream import cores_idle
-from .brick_port import BrickPort
+from .brick_port import BrickPort, OverBudget
 from .simulation import Simulation
 
-_monotonic = time.monotonic
 _perf_counter = time.perf_counter
 SPIN_S = 0.002
-BAD_MESSAGE = (ProtocolError, TypeError, ValueError, IndexError, KeyError, AttributeError, OverflowError)
 
 
 def _why(err: Exception) -> str:
-    return f"gone: {err}" if isinstance(err, ConnectionGone) else f"protocol: {err}"
+    """Why a brick ends for what it sent: gone, a breach of the protocol, a budget."""
+    if isinstance(err, ConnectionGone):
+        return f"gone: {err}"
+    if isinstance(err, OverBudget):
+        return f"budget: {err}"
+    return f"protocol: {err}"
 
 
 class Session:
@@ -60,6 +73,8 @@ class Session:
         self.stop_us: int | None = None  # a stepped run's stop (advance): the world goes no further
         self.started = False
         self._let_go: set[int] = set()  # robots let go when their programs ended (Simulation.let_go)
+        for port in ports:
+            port.time_limit_us = limit_us
 
     def _step_to(self, target_us: int) -> None:
         """Run the world's ticks up to target_us; after each, the snapshots bricks will need."""
@@ -97,34 +112,67 @@ class Session:
         label = tick_us + self.sim.tick_us
         for port in self.ports:
             if not port.finished and port.declared in (tick_us, label):
-                port.snapshot(label)
+                self._apply(port, lambda port=port: port.snapshot(label))
 
     def drop(self, port: BrickPort, why: str) -> None:
-        """End a brick's part in the run (it broke the protocol, went away, or hung)."""
+        """End a brick's part in the run (it broke the protocol or a budget, went away, or hung)."""
         if not port.finished:
             port.gone = why
         port.send(["stop", why])
 
+    def _apply(self, port: BrickPort, work: Callable[[], object]):
+        """Do `work` on this brick's behalf (take its messages, apply its ops, take its snapshot): the one
+        place where what a brick sends reaches the world.  Whatever goes wrong ends this brick only, and
+        the run goes on for the others: a message that is not the protocol, a budget it went past, its
+        connection gone, and any other exception, which is the simulator's own failure on this brick's
+        ops (our bug, or a value nobody foresaw): said on stderr with its traceback, and in the reason.
+        Returns what `work` returns, None once the brick is dropped."""
+        try:
+            return work()
+        except (ProtocolError, OverBudget) as err:
+            self.drop(port, _why(err))
+        except Exception as err:  # noqa: BLE001 - contained to this brick, and reported loudly
+            what = f"{type(err).__name__}: {str(err)[:500]}"
+            print(
+                f"ev3sim2d: the simulator failed applying robot {port.index + 1}'s ops (a bug in ev3sim2d, "
+                f"please report it); that robot's run ends, the others run on:\n{traceback.format_exc()}",
+                file=sys.stderr,
+                flush=True,
+            )
+            self.drop(port, f"simulator failure: applying this brick's ops raised {what} (a bug in ev3sim2d)")
+        return None
+
+    def _stalled(self, port: BrickPort, clock_us: int, spent_s: float, judge: bool = True) -> None:
+        """The simulator spent spent_s of real time on this brick (waiting for it, or applying its ops): held
+        against it unless its clock moved past clock_us.  Judged (judge: its messages so far are applied),
+        a brick whose clock has stood still for hang_after_s of such time is stopped as hung."""
+        if port.time_us > clock_us:
+            port.stalled_s = 0.0
+            return
+        port.stalled_s += spent_s
+        if judge and port.stalled_s >= self.hang_after_s and not port.finished:
+            self.drop(port, "hung")
+
     def _drain(self, port: BrickPort) -> None:
-        """Apply whatever the brick has sent, as far as the world's time allows."""
-        while True:
-            try:
-                port.run_ops(self.world_us)
-                if port.finished or port.marker is not None:
-                    return
-                message = port.channel.pending()
-                if message is None:
-                    if port.broken:
-                        self.drop(port, "gone: the brick closed the connection")
-                    return
-                port.accept(message)
-                port.last_heard = _monotonic()
-            except BAD_MESSAGE as err:
-                self.drop(port, _why(err))
+        """Apply whatever the brick has sent, as far as the world's time allows; the real time it takes is
+        held against the brick while its clock stands still (judged once what it read is applied)."""
+        started, clock = _perf_counter(), port.time_us
+        while not port.finished:
+            self._apply(port, lambda: port.run_ops(self.world_us))
+            if port.finished or port.marker is not None:
                 return
+            now = _perf_counter()
+            self._stalled(port, clock, now - started)
+            started, clock = now, port.time_us
+            message = None if port.finished else self._apply(port, port.channel.pending)
+            if message is None:
+                if not port.finished and port.broken:
+                    self.drop(port, "gone: the brick closed the connection")
+                return
+            self._apply(port, lambda: port.accept(message))  # noqa: B023 - called at once
 
     def run(self) -> None:
-        self._heard_now()
+        self._restart_hang_clocks()
         frozen_before = gc.get_freeze_count()  # a grading worker: what its grader froze before the fork
         gc.freeze()  # the world, the devices, the modules: a collection during the run skips them
         try:
@@ -139,10 +187,9 @@ class Session:
                 gc.unfreeze()
         self.finish()
 
-    def _heard_now(self) -> None:
-        now = _monotonic()
+    def _restart_hang_clocks(self) -> None:
         for port in self.ports:
-            port.last_heard = now
+            port.stalled_s = 0.0
 
     def finish(self) -> None:
         """The world to the moment the last brick ended (or the time limit), and every printed line shown."""
@@ -161,7 +208,7 @@ class Session:
         if not self.started:
             self.started = True
             self._snapshots(0)
-        self._heard_now()
+        self._restart_hang_clocks()
         self.stop_us = until_us
         try:
             self._run()
@@ -197,6 +244,7 @@ class Session:
                 return
             self._step_to(target)
             port.marker = None
+            port.stalled_s = 0.0  # (it waited for the world: not its own time)
 
     def _stop_at_limit(self, live: list[BrickPort]) -> None:
         """Every brick still running has passed the time limit: the world runs to it, and the run ends."""
@@ -234,60 +282,48 @@ class Session:
                 for port in live:
                     if port.marker == target:
                         port.marker = None
+                        port.stalled_s = 0.0  # (it waited for the world: not its own time)
                 continue
             self._wait(behind)
 
     def _wait(self, ports: list[BrickPort]) -> None:
-        """Wait until one of these bricks (all behind the world) says something, or stop a silent one."""
-        deadline = min(p.last_heard for p in ports) + self.hang_after_s
+        """Wait until one of these bricks (all behind the world) says something.  The time waited is held
+        against each of them (_stalled): one that said nothing is stopped once its clock has stood still
+        for too long; one that did is judged once what it said is applied."""
+        started = _perf_counter()
+        clocks = [port.time_us for port in ports]
+        left = max(0.0, min(self.hang_after_s - port.stalled_s for port in ports))
+        heard: set[int] = set()
         if len(ports) == 1:
             port = ports[0]
-            try:
-                message = port.channel.receive(timeout_s=max(0.0, deadline - _monotonic()))
-                if message is not None:
-                    port.accept(message)
-                    port.last_heard = _monotonic()
-            except BAD_MESSAGE as err:
-                self.drop(port, _why(err))
-                return
+            message = self._apply(port, lambda: port.channel.receive(timeout_s=left))
+            if message is not None:
+                heard.add(port.index)
+                self._apply(port, lambda: port.accept(message))
         else:
             spin_end = _perf_counter() + (self.spin_s if cores_idle() else 0.0)
-            heard = False
             while not heard:
-                for port in ports:
-                    if self._take(port):
-                        heard = True
+                heard.update(port.index for port in ports if self._take(port))
                 if heard or _perf_counter() > spin_end:
                     break
             if not heard:
                 channels = [p.channel for p in ports]
                 try:
-                    ready = wait_for_any(channels, max(0.0, min(0.05, deadline - _monotonic())))
+                    ready = wait_for_any(channels, min(0.05, left))
                 except ProtocolError:
                     ready = [c for c in channels if c.closed]
-                for port in ports:
-                    if port.channel in ready:
-                        heard = self._take(port) or heard
-            if heard:
-                return
-        now = _monotonic()
-        for port in ports:
-            if not port.finished and now - port.last_heard >= self.hang_after_s:
-                port.gone = "hung"
-                self.drop(port, "hung")
+                heard.update(port.index for port in ports if port.channel in ready and self._take(port))
+        spent = _perf_counter() - started
+        for port, clock in zip(ports, clocks, strict=True):
+            if not port.finished:
+                self._stalled(port, clock, spent, judge=port.index not in heard)
 
     def _take(self, port: BrickPort) -> bool:
         """Queue one message of the brick's if one has arrived; True if something happened."""
-        try:
-            message = port.channel.pending()
-        except BAD_MESSAGE as err:
-            self.drop(port, _why(err))
-            return True
-        if message is None:
+        if port.finished:
             return False
-        try:
-            port.accept(message)
-        except BAD_MESSAGE as err:
-            self.drop(port, f"protocol: {err}")
-        port.last_heard = _monotonic()
+        message = self._apply(port, port.channel.pending)
+        if message is None:
+            return port.finished
+        self._apply(port, lambda: port.accept(message))
         return True

@@ -4,6 +4,8 @@ caller's environment reaches it, and how it ends is told truthfully."""
 import json
 import os
 
+import pytest
+
 from ev3sim2d.simulator.bricks import PYTHON_P, brick_environment
 
 
@@ -44,12 +46,14 @@ def test_the_brick_is_another_process_in_a_folder_of_its_own(run, tmp_path):
     assert not os.path.exists(cwd)  # the scratch folder is gone with the run
 
 
+@pytest.mark.needs_linux("signals")  # told by the signal that ended it: SIGSEGV
 def test_a_crash_of_the_interpreter_is_told_as_such(run):
     result = run("import ctypes\nctypes.string_at(0)\n")
     assert result.status == "crashed"
     assert "segmentation fault" in result.reason
 
 
+@pytest.mark.needs_linux("signals")  # os.kill(..., SIGKILL)
 def test_a_program_that_kills_its_own_process_ends_the_run_with_what_it_did(run):
     result = run(
         """
@@ -73,7 +77,7 @@ def test_sounds_and_frames_forged_through_the_link_cannot_choke_the_simulator_or
         """
         from ev3dev2 import _link
         import time
-        _link.call("sound", "beep", {"notes": [{"frequency": "x", "repeats": 10**9, "length_ms": 1e308}] * 10**4,
+        _link.call("sound", "beep", {"notes": [{"frequency": "x", "repeats": 10**9, "length_ms": 1e-308}] * 10**4,
                                      "duration": float("inf"), "volume": -5, "evil": "y" * 10**6})
         _link.call("sound", "set_volume", {"pct": float("nan")})
         for i in range(2500):
@@ -85,8 +89,12 @@ def test_sounds_and_frames_forged_through_the_link_cannot_choke_the_simulator_or
     sounds = [e for e in result.trace.events if e[2] == "sound"]
     beep = sounds[0][3]
     assert "evil" not in beep and "duration" not in beep and beep["volume"] == 0.0
-    assert len(beep["notes"]) == 100 and beep["notes"][0] == {"repeats": 100, "length_ms": 60000.0}
-    assert len(result.trace.lcd_frames) <= 2000 and result.trace.result["dropped_events"] > 0
+    assert len(beep["notes"]) == 100 and beep["notes"][0] == {"repeats": 100, "length_ms": 1e-308}
+    assert len(result.trace.lcd_frames) == 1 and result.trace.result["dropped_events"] > 0  # (all alike)
+    over = run(
+        'from ev3dev2 import _link\n_link.call("sound", "beep", {"notes": [{"repeats": 10**9, "length_ms": 1e308}] * 10**4})\n'
+    )
+    assert over.status == "crashed" and "SOUND_SECONDS" in over.reason  # past a budget: that brick's end
     from ev3sim2d.render.timeline import sound_spans
 
     assert len(sound_spans(result.trace)) <= 100 * 100
@@ -117,6 +125,7 @@ mine.kill()
 """
 
 
+@pytest.mark.needs_linux("linux_kernel", "fork", "proc", "sleep_command")  # PR_SET_CHILD_SUBREAPER
 def test_a_subreaper_ends_a_bricks_orphans_and_leaves_its_own_children_alone(tmp_path):
     """Orphans of a brick come back to the process that ran it (a subreaper), which kills them; a child it
     started itself (the live page's browser, a test runner's helper) is not an orphan and lives on."""

@@ -1,4 +1,4 @@
-"""The lobby's socket settings, in the form each system takes them."""
+"""A socket's send timeout, in the form each system takes it."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import struct
 
 import pytest
 
-from ev3sim2d.simulator.lobby import send_timeout
+from ev3sim2d.protocol.stream import send_timeout
 
 
 class WindowsSocket:
