@@ -1066,7 +1066,7 @@ JOIN_ATTACKS = {
     "heartbeats": (
         forever(["ops", [["@", 0]]], every_s=0.005),
         "hung",
-        "the program's computer sent nothing",
+        "the program on the other computer ran",
     ),
     "printed_bytes": (
         timed(lambda t: ["ops", [["p", t, "stdout", "x" * 1_000_000]]]),
