@@ -5,7 +5,8 @@ gradings of one file would differ.  `install` runs once, from the environment (e
 the program is loaded.  In microseconds of virtual time `now` (0 when the run starts):
 - wall clocks (`time.time`, CLOCK_REALTIME and its coarse and alarm forms, `datetime.now`,
   `localtime` ...): VIRTUAL_EPOCH_S + now, 2025-01-01 00:00 UTC when every run starts; CLOCK_TAI is
-  37 s ahead of it;
+  37 s ahead of it.  What formats a time (`strftime`, `ctime`, `asctime`, `logging`'s `%(asctime)s`)
+  formats that one, in UTC, the brick's time zone (its environment says TZ=UTC);
 - steady clocks (`monotonic`, CLOCK_MONOTONIC and its raw and coarse forms, CLOCK_BOOTTIME,
   `os.times().elapsed`): MONOTONIC_BASE_S + now; `perf_counter`: now;
 - CPU time (`process_time`, `thread_time`, CLOCK_PROCESS_CPUTIME_ID, CLOCK_THREAD_CPUTIME_ID, the CPU
@@ -27,7 +28,11 @@ the program is loaded.  In microseconds of virtual time `now` (0 when the run st
   run.  (A program cannot handle it: `signal.signal` works only in the interpreter's main thread, and a
   program runs in a thread of its own.)  So does `faulthandler.dump_traceback_later`;
 - `cProfile` (`_lsprof.Profiler` without a timer of its own) times with the virtual clock;
-A fresh copy of a patched built-in module (`importlib.util.module_from_spec`) is the patched module.
+A fresh copy of a patched built-in module (`importlib.util.module_from_spec`) is the patched module.  A
+replacement of a built-in function acts as one (BuiltinLike: it stays unbound as a class's attribute,
+as `logging.Formatter.converter` is, and prints as the built-in), `datetime.now()` is a value that prints
+as `datetime.datetime(...)`, and a shim module imported before this was installed (as a zygote does)
+holds the replacements too.
 
 The brick's own machinery keeps the real clocks: its modules bound the real functions when they were
 imported, `select` is given back to them whole, and every replacement here that the brick itself
@@ -100,6 +105,33 @@ TIMER_SIGNALS = {
     if hasattr(signal, which)
 }
 FILE_TIMES = ("st_atime", "st_mtime", "st_ctime", "st_birthtime")
+SHIM_PACKAGES = (
+    "ev3dev2",
+    "pybricks",
+)  # what a program imports of ours: it reads the clocks the program reads
+
+
+class BuiltinLike:
+    """A replacement of a built-in function that acts as one wherever a program could tell: a class that
+    keeps it as an attribute calls it unbound, as `logging.Formatter.converter = time.localtime` needs (a
+    plain function there would be a method, and every record with a time would fail), it prints as
+    `<built-in function localtime>` (no address, which differs from run to run), and pickles by name."""
+
+    def __init__(self, fn: Callable, name: str, module: str, real=None) -> None:
+        self._fn = fn
+        self.__name__ = self.__qualname__ = name
+        self.__module__ = module
+        self.__doc__ = getattr(real, "__doc__", None) or fn.__doc__
+        self.__wrapped__ = fn  # (inspect.signature)
+
+    def __call__(self, *args, **kwargs):
+        return self._fn(*args, **kwargs)
+
+    def __repr__(self) -> str:
+        return f"<built-in function {self.__name__}>"
+
+    def __reduce__(self) -> str:
+        return self.__qualname__
 
 
 class VirtualClocks:
@@ -122,6 +154,7 @@ class VirtualClocks:
         self.timer_waits: dict = {}  # timer -> the channel its task waits on
         self.timer_fire: dict = {}  # timer -> what it does at its deadline
         self.patched: dict[str, dict[str, object]] = {}  # module name -> its replaced attributes
+        self.replacing: dict[int, tuple[object, object]] = {}  # id(real) -> (real, its replacement)
 
     # ------------------------------------------------------------- helpers
     def in_task(self) -> bool:
@@ -163,9 +196,19 @@ class VirtualClocks:
         return found
 
     def patch(self, module: types.ModuleType, **replacements) -> None:
-        """Set the module's attributes (and remember them, for a fresh copy of the module)."""
+        """Set the module's attributes (and remember them, for a fresh copy of the module); a function that
+        replaces a built-in one (or stands for one this system lacks) behaves as a built-in (BuiltinLike)."""
+        for name, value in replacements.items():
+            real = getattr(module, name, None)
+            if isinstance(value, types.FunctionType) and (
+                real is None or isinstance(real, (types.BuiltinFunctionType, BuiltinLike))
+            ):
+                replacements[name] = BuiltinLike(value, name, module.__name__, real)
         self.patched.setdefault(module.__name__, {}).update(replacements)
         for name, value in replacements.items():
+            real = getattr(module, name, None)
+            if real is not None:
+                self.replacing[id(real)] = (real, value)
             setattr(module, name, value)
 
     # ------------------------------------------------------------- install
@@ -184,6 +227,19 @@ class VirtualClocks:
         after_import("faulthandler", self._faulthandler)
         after_import("_lsprof", self._profiler)
         self._guard_fresh_copies()
+        self._rebind_in_shims()
+
+    def _rebind_in_shims(self) -> None:
+        """A shim module imported before this (a zygote imports the shim once, then forks its bricks) that
+        bound a clock by name, as python-ev3dev2's `from time import sleep` does, which a program's
+        `from ev3dev2.sound import *` passes on, gets the virtual one, as one imported after does."""
+        for name, module in list(sys.modules.items()):
+            if module is None or name.split(".")[0] not in SHIM_PACKAGES:
+                continue
+            for key, value in list(vars(module).items()):
+                found = self.replacing.get(id(value))
+                if found is not None and found[0] is value:
+                    setattr(module, key, found[1])
 
     def _keep_real_for_the_brick(self) -> None:
         """The brick's own modules (the connection's waits) keep the real `select`, whatever is patched below."""
@@ -787,3 +843,9 @@ class _VirtualDate(datetime.date):
     def today(cls):
         moment = _VirtualDatetime.now()
         return cls(moment.year, moment.month, moment.day)
+
+
+# Named as the classes they stand for, so that a value prints as `datetime.datetime(2025, 1, 1, 0, 0)` (the
+# C code prints its type's __name__, in a repr and in an error message) and pickles as datetime's own.
+for _virtual, _name in ((_VirtualDatetime, "datetime"), (_VirtualDate, "date")):
+    _virtual.__name__, _virtual.__qualname__, _virtual.__module__ = f"datetime.{_name}", _name, "datetime"

@@ -11,6 +11,15 @@ Installed once, before the program is loaded (the brick process ends with the ru
 - `print` and writes to stderr are sent to the simulator with their virtual
   time (a printed line costs 1 ms, as on the brick's console); `input()` reads
   end-of-file; `os._exit` ends only the program, as `sys.exit` does;
+- the names `site` adds to the builtins are there (`exit`, `quit`, `help`, `copyright`, `credits`,
+  `license`): the brick starts Python with -S, while on an EV3 brickrun starts the program's file
+  itself (its `#!/usr/bin/env python3` line), site and all.  A main thread that ends with a
+  SystemExit whose code is neither None nor a number (`exit("message")`) prints it to stderr, as
+  Python does as it exits (with status 1: the run ends with that error);
+- `sys.argv` is the program's arguments as the simulator gives them (its welcome's "argv"), else
+  `[the program's path]`;
+- the machine is an EV3 running ev3dev-stretch: its host name, `os.uname()`, `platform`'s answers and
+  its one CPU (machine.py);
 - threads are scheduler tasks in virtual time (threads.py).
 The hash seed of str and bytes is fixed by the process's environment
 (PYTHONHASHSEED=0), which the simulator sets whatever its own says.
@@ -18,7 +27,9 @@ The hash seed of str and bytes is fixed by the process's environment
 
 from __future__ import annotations
 
+import _sitebuiltins
 import _thread
+import builtins
 import importlib.util
 import io
 import os
@@ -28,6 +39,7 @@ from collections.abc import Callable
 
 from . import identity
 from .clocks import VirtualClocks
+from .machine import EV3Machine
 from .scheduler import Scheduler
 from .threads import VirtualThreads
 
@@ -161,22 +173,76 @@ def _deterministic_randomness(seed: int, after_import: _AfterImport) -> None:
     after_import.add("numpy.random", _seed_numpy(seed))
 
 
-class BrickEnvironment:
-    """Installs everything above for one program run in this process."""
+class _Quitter(_sitebuiltins.Quitter):
+    """site's `exit` and `quit`, called as site's are; their frame is the brick's, so that a run's traceback
+    ends at the program's line, as after `sys.exit`."""
 
-    def __init__(self, scheduler: Scheduler, link, seed: int, program_path: str, program_dirs: list[str]):
+    def __call__(self, code=None):
+        try:
+            sys.stdin.close()
+        except Exception:  # noqa: BLE001 - as site's
+            pass
+        raise SystemExit(code)
+
+
+_Quitter.__name__ = _Quitter.__qualname__ = "Quitter"
+_Quitter.__module__ = "_sitebuiltins"
+
+
+def _site_builtins() -> None:
+    """What `site` adds to the builtins when Python starts without -S, as it adds them on Linux."""
+    import site  # (with -S, importing it runs nothing)
+
+    builtins.exit = _Quitter("exit", "Ctrl-D (i.e. EOF)")
+    builtins.quit = _Quitter("quit", "Ctrl-D (i.e. EOF)")
+    site.setcopyright()
+    site.sethelper()
+
+
+def _as_python_exits(run: Callable[[], None]) -> Callable[[], None]:
+    """run, whose SystemExit with a code that is neither None nor an int is printed to stderr, as
+    Python prints it when it ends the interpreter (`exit("message")`, `sys.exit("message")`)."""
+
+    def main() -> None:
+        try:
+            run()
+        except SystemExit as exc:
+            if exc.code is not None and not isinstance(exc.code, int) and sys.stderr is not None:
+                sys.stderr.write(f"{exc.code}\n")
+            raise
+
+    return main
+
+
+class BrickEnvironment:
+    """Installs everything above for one program run in this process.
+
+    argv: the program's sys.argv, when the simulator's welcome gives one (None: [program_path])."""
+
+    def __init__(
+        self,
+        scheduler: Scheduler,
+        link,
+        seed: int,
+        program_path: str,
+        program_dirs: list[str],
+        argv: list[str] | None = None,
+    ):
         self.scheduler = scheduler
         self.link = link
         self.seed = seed
         self.program_path = program_path
         self.program_dirs = program_dirs
+        self.argv = argv
 
     def install(self) -> None:
         s = self.scheduler
         after_import = _AfterImport()
         self.clocks = VirtualClocks(s, self.seed, _real_start_new_thread, self.link.flush)
         self.clocks.install(after_import.add)
+        EV3Machine(self.clocks.in_task, self.clocks.patch).install(after_import.add)
         _deterministic_randomness(self.seed, after_import)
+        _site_builtins()
         _thread.start_new_thread = self._start_new_thread
         _thread.start_new = self._start_new_thread
         self.threads = VirtualThreads(s, _real_start_new_thread)
@@ -185,14 +251,14 @@ class BrickEnvironment:
         self.err = ProgramOutput("stderr", self.link, s)
         sys.stdout, sys.stderr, sys.stdin = self.out, self.err, io.StringIO("")
         sys.__stdout__, sys.__stderr__, sys.__stdin__ = sys.stdout, sys.stderr, sys.stdin
-        sys.argv = [self.program_path]
+        sys.argv = [self.program_path] if self.argv is None else [str(arg) for arg in self.argv]
         sys.path[:0] = [d for d in self.program_dirs if d not in sys.path]
         identity.install(self.program_dirs)
         self._real_exit = os._exit
         os._exit = self._os_exit
 
     def main_body(self, run: Callable[[], None]) -> Callable[[], None]:
-        return self.threads.as_main_thread(run)
+        return self.threads.as_main_thread(_as_python_exits(run))
 
     def finish(self) -> None:
         self.out.finish()
