@@ -54,6 +54,19 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _program_arguments(argv: list[str]) -> tuple[list[str], list[str]]:
+    """`ev3sim2d run PROG... -- ARG...`: what follows the first -- goes to the programs (their sys.argv[1:]),
+    not to ev3sim2d, for a command that passes arguments on (PASSES_ARGUMENTS)."""
+    if "--" not in argv:
+        return argv, []
+    at = argv.index("--")
+    words = [a for a in argv[:at] if not a.startswith("-")]
+    passing = {c.NAME for c in COMMANDS if getattr(c, "PASSES_ARGUMENTS", False)}
+    if not words or words[0] not in passing:
+        return argv, []
+    return argv[:at], argv[at + 1 :]
+
+
 def _console_never_fails() -> None:
     """What a program prints, its file names and every message reach a console whatever it can show:
     a Windows console or a redirected output there is cp1252 (or cp437), a Linux one under LC_ALL=C is
@@ -70,7 +83,9 @@ def _console_never_fails() -> None:
 def main(argv: list[str] | None = None) -> int:
     if argv is None:  # the real command line, not a call from code
         _console_never_fails()
+    argv, program_arguments = _program_arguments(list(sys.argv[1:] if argv is None else argv))
     args = _parser().parse_args(argv)
+    args.program_arguments = program_arguments
     command = next(c for c in COMMANDS if c.NAME == args.command)
     try:
         status = command.main(args)

@@ -11,6 +11,7 @@ messages always are.
 
 from __future__ import annotations
 
+import os
 import socket
 import time
 from collections.abc import Callable
@@ -141,19 +142,20 @@ def run_joined(
         "the run starts when every robot has a program"
     )
     limits = _limits(seat)
-    brick, read_paths = start_brick([path.parent], limits=limits)
+    brick, read_paths = start_brick([path.parent], limits=limits, program=path)
     try:
         brick.channel.send(
             brick_welcome(brick, read_paths, path, seat["robot"], seat["tick_us"], seat["seed"], limits)
         )
-        return _relay(brick, net, seat, echo)
+        return _relay(brick, net, seat, echo, path)
     finally:
         brick.stop(patience_s=2.0)
         net.close()
 
 
-def _relay(brick: BrickProcess, net: Channel, seat: dict, echo) -> JoinResult:
-    """Pass messages both ways until the world says the run is over (or is gone)."""
+def _relay(brick: BrickProcess, net: Channel, seat: dict, echo, program: Path) -> JoinResult:
+    """Pass messages both ways until the world says the run is over (or is gone).  The brick's error
+    names the program's folder as it is here, not the copy its brick worked in."""
     local = brick.channel
     result = JoinResult(seat, None, None)
     brick_on = True
@@ -162,6 +164,7 @@ def _relay(brick: BrickProcess, net: Channel, seat: dict, echo) -> JoinResult:
         if brick_on:
             try:
                 while (message := local.pending()) is not None:
+                    message = _named_as_here(message, brick, program)
                     _show(message, result, echo)
                     if not _forward(net, message, result):
                         return result
@@ -187,6 +190,20 @@ def _relay(brick: BrickProcess, net: Channel, seat: dict, echo) -> JoinResult:
         except ProtocolError as err:
             result.lost = f"the world sent something that is not ev3sim2d's protocol ({err})"
             return result
+
+
+def _named_as_here(message: list, brick: BrickProcess, program: Path) -> list:
+    """The brick's end message with its error's file names as they are on this computer."""
+    error = (
+        message[1].get("error")
+        if message[0] == "end" and len(message) == 2 and type(message[1]) is dict
+        else None
+    )
+    if brick.working is None or type(error) is not dict:
+        return message
+    copy, original = os.path.join(str(brick.working.folder), ""), os.path.join(str(program.parent), "")
+    named = {k: v.replace(copy, original) if type(v) is str else v for k, v in error.items()}
+    return ["end", {**message[1], "error": named}]
 
 
 def _forward(net: Channel, message: list, result: JoinResult) -> bool:

@@ -60,6 +60,7 @@ class BrickRun:
             config.get("seed", 0),
             self.program_path,
             config.get("program_dirs", []),
+            argv=config.get("argv"),
         )
         self.env.install()
         for name in SHIM_MODULES:

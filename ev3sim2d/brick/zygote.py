@@ -11,8 +11,8 @@ session, working folder, console, HOME and TMPDIR, the requester's cores), then
 runs boot.run_brick: welcome, sandbox, program.  Forking costs about 7 ms.
 
 Requests come on one SOCK_SEQPACKET socket (each message whole, so several
-grading workers may share it), as {"scratch": folder, "memory": bool, "cpus":
-[...]} with the fds [connection, (shared memory,) console, reply].  The zygote
+grading workers may share it), as {"scratch": folder, "cwd": working folder,
+"memory": bool, "cpus": [...]} with the fds [connection, (shared memory,) console, reply].  The zygote
 answers on the reply socket, which is the requester's alone: {"pid": pid} at
 once, {"pid": pid, "status": wait status} when the brick has ended.  If the
 requester goes away (its end of the reply socket closes) the zygote kills the
@@ -75,6 +75,7 @@ class Zygote:
                 raise ValueError("wrong number of fds")
             conn, memory_fd, console, reply = fds if memory else (fds[0], -1, fds[1], fds[2])
             scratch, cpus = str(request["scratch"]), [int(c) for c in request.get("cpus") or ()]
+            cwd = str(request.get("cwd") or scratch)
         except (ValueError, KeyError, TypeError):
             for fd in fds:
                 os.close(fd)
@@ -83,7 +84,7 @@ class Zygote:
         sys.stderr.flush()
         pid = os.fork()
         if pid == 0:
-            self._become_brick(conn, memory_fd, console, reply, scratch, cpus)
+            self._become_brick(conn, memory_fd, console, reply, scratch, cwd, cpus)
         for fd in (conn, memory_fd, console):
             if fd >= 0:
                 os.close(fd)
@@ -94,7 +95,9 @@ class Zygote:
         except OSError:
             self._kill(pid)
 
-    def _become_brick(self, conn: int, memory_fd: int, console: int, reply: int, scratch: str, cpus) -> None:
+    def _become_brick(
+        self, conn: int, memory_fd: int, console: int, reply: int, scratch: str, cwd: str, cpus
+    ) -> None:
         """In the child: look like a fresh brick (see simulator/bricks.py, start_brick), then be one."""
         code = 70
         try:
@@ -107,7 +110,7 @@ class Zygote:
             os.setsid()
             if cpus and hasattr(os, "sched_setaffinity"):
                 os.sched_setaffinity(0, cpus)
-            os.chdir(scratch)
+            os.chdir(cwd)
             os.environ["HOME"] = os.environ["TMPDIR"] = scratch
             null = os.open(os.devnull, os.O_RDONLY)
             os.dup2(null, 0)

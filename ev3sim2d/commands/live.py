@@ -20,6 +20,9 @@ NAME = "live"
 HELP = "run programs live in the browser: pause, step, reload, drag the robot, edit the world, plot values"
 
 
+PASSES_ARGUMENTS = True  # `live PROG... -- ARG...`: what follows -- is the programs' own command line
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_programs_and_world(parser)
     parser.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
@@ -56,7 +59,15 @@ def main(args) -> int:
         maze_path = find_maze(args.maze)
         world = load_maze(maze_path)
         robots = robots_given(args.robot, args.programs)
-        live = LiveRun(args.programs, world, robots, speed=speed, seed=args.seed, time_limit_s=args.time)
+        live = LiveRun(
+            args.programs,
+            world,
+            robots,
+            speed=speed,
+            seed=args.seed,
+            time_limit_s=args.time,
+            arguments=getattr(args, "program_arguments", ()),
+        )
     except (WorldFileError, ProgramError, RobotOptionError, LiveError, FileNotFoundError) as err:
         return fail(str(err))
     own_file = Path(args.maze).is_file()

@@ -25,7 +25,12 @@ HELP = "run a program (or several, one robot each) in a world"
 
 
 def add_programs_and_world(parser: argparse.ArgumentParser) -> None:
-    """PROG..., --maze and --robot, as `run` and `live` take them."""
+    """PROG... [-- ARG...], --maze and --robot, as `run` and `live` take them (PASSES_ARGUMENTS)."""
+    parser.usage = "%(prog)s [options] PROG [PROG ...] [-- ARG ...]"
+    parser.epilog = (
+        "Arguments after -- are every program's own command line: `prog.py -- 26 1.5` gives "
+        "sys.argv == ['prog.py', '26', '1.5'], as `python3 prog.py 26 1.5` does on a brick."
+    )
     parser.add_argument("programs", nargs="+", metavar="PROG", help="python-ev3dev2 program file(s)")
     parser.add_argument(
         "--maze", default="empty", help="world file, or the name of a shipped world (default: empty)"
@@ -43,6 +48,9 @@ def add_robot_option(parser: argparse.ArgumentParser, each: str) -> None:
         help=f"robot file or shipped robot name: once for every robot, or once per {each} in order "
         "(default: the robot the start names, else the world's robot)",
     )
+
+
+PASSES_ARGUMENTS = True  # `run PROG... -- ARG...`: what follows -- is the programs' own command line
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -173,6 +181,8 @@ def report_end(args, result: RunResult, programs: list[str]) -> int:
     except OSError as err:
         print(f"ev3sim2d: error: could not write the outputs: {err}", file=sys.stderr)
         return EXIT_USAGE
+    for note in result.notes:
+        print(f"ev3sim2d: note: {printable(note)}", file=sys.stderr)
     speed = result.sim_time_s / result.wall_time_s if result.wall_time_s > 0 else float("inf")
     print(
         f"ev3sim2d: {one_line(result.reason)} (simulated in {result.wall_time_s:.2f} s, {speed:.0f}x real time)",
@@ -195,7 +205,15 @@ def main(args) -> int:
         echo = None if args.quiet else echo_line(sys.stdout, len(args.programs), show=one_line)
         become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
         result = run_programs(
-            args.programs, world, robot, args.time, args.seed, args.hang_after, echo, presses=args.press
+            args.programs,
+            world,
+            robot,
+            args.time,
+            args.seed,
+            args.hang_after,
+            echo,
+            presses=args.press,
+            arguments=getattr(args, "program_arguments", ()),
         )
     except (WorldFileError, RobotOptionError) as err:
         return fail(str(err))

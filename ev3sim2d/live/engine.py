@@ -25,7 +25,15 @@ from ..results.trace import Trace
 from ..simulator.brick_port import BrickPort
 from ..simulator.bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
 from ..simulator.program import Program, ProgramError
-from ..simulator.run import await_hello, new_simulation, program_error, robot_names, robot_specs, run_result
+from ..simulator.run import (
+    await_hello,
+    new_simulation,
+    program_error,
+    ran_as,
+    robot_names,
+    robot_specs,
+    run_result,
+)
 from ..simulator.session import Session
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
@@ -59,9 +67,12 @@ class LiveRun:
         time_limit_s: float | None = None,
         hang_after_s: float = 5.0,
         watch: bool = True,
+        arguments: Sequence[str] = (),
     ) -> None:
-        """watch: reload by itself when a program file changes on disk."""
+        """watch: reload by itself when a program file changes on disk.  arguments: every program's
+        command line after its name (its sys.argv[1:])."""
         self.programs = [Path(p) for p in programs]
+        self.arguments = [str(a) for a in arguments]
         for path in self.programs:
             Program(path)  # ProgramError now, for a file that is missing (a syntax error shows on the page)
         if len(self.programs) > len(world.starts):
@@ -283,12 +294,13 @@ class LiveRun:
         printed: list = []
         for i, path in enumerate(self.programs):
             real = path.resolve()
-            self._shown.append((str(path), str(real)))
-            brick, read_paths = start_brick([real.parent], spin=False, limits=limits)
+            brick, read_paths = start_brick([real.parent], spin=False, limits=limits, program=real)
+            self._shown.append((str(path), ran_as(real, brick)))
             self._bricks.append(brick)
-            brick.channel.send(
-                brick_welcome(brick, read_paths, real, names[i], sim.tick_us, self.seed, limits)
+            welcome = brick_welcome(
+                brick, read_paths, real, names[i], sim.tick_us, self.seed, limits, arguments=self.arguments
             )
+            brick.channel.send(welcome)
             self._ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
         for port in self._ports:
             await_hello(port)

@@ -2,8 +2,9 @@
 
 A brick is a fresh Python interpreter (`python -s -S -B -P ev3sim2d/brick/boot.py`)
 with one end of a socket pair (and shared memory for the messages, where the
-machine allows: protocol/shared_memory.py), a scratch folder of its own (its working folder,
-HOME and TMPDIR), its console (fds 1 and 2) in a file of that folder, and a
+machine allows: protocol/shared_memory.py), a scratch folder of its own (HOME and TMPDIR,
+holding a copy of the program's folder that is its working folder: working_folder.py), its
+console (fds 1 and 2) in a file of that folder, and a
 short fixed environment: nothing of the caller's environment (tokens, the
 hidden variants' location, PYTHONHASHSEED=random) reaches the program.  The
 brick puts itself in its sandbox (ev3sim2d/brick/sandbox.py) before it reads
@@ -35,6 +36,7 @@ import sys
 import tempfile
 import threading
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -45,6 +47,7 @@ from ..protocol.shared_memory import create_memory
 from ..protocol.stream import send_timeout
 from . import job_object, memory_watch, sandbox_exec
 from .scratch import open_console, remove_tree, tail
+from .working_folder import WorkingFolder, make_working_folder
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
@@ -91,6 +94,7 @@ class BrickProcess:
     job: job_object.JobObject | None = None  # (Windows) the Job Object every process of the brick is in
     memory: memory_watch.Watched | None = None  # its processes' memory together, where /proc shows them
     outside: dict = field(default_factory=dict)  # isolation layers put around it from outside: name -> state
+    working: WorkingFolder | None = None  # the copy of the program's folder it works in
 
     def stop(self, patience_s: float = 0.0) -> None:
         """Kill the brick and everything it started, reap it, remove its scratch folder.
@@ -333,6 +337,7 @@ def start_brick(
     spin: bool = True,
     zygote=None,
     limits: BrickLimits | None = None,
+    program: Path | None = None,
 ) -> tuple[BrickProcess, list[str]]:
     """Start a brick process; returns it and the paths its sandbox must let it read (besides the system's).
 
@@ -341,7 +346,11 @@ def start_brick(
     killed.  spin: whether the two sides may spin while they wait for each other (not when other runs
     share the machine's cores: see protocol/shared_memory.py).  zygote: a BrickZygote to fork the brick
     from (zygote.py); a fresh process when it is None or gone.  limits: what a Job Object (where the
-    system has them) holds the brick's processes to, together; the brick sets its own limits too."""
+    system has them) holds the brick's processes to, together; the brick sets its own limits too.
+    program: the program the brick will run: what it may read is copied into its scratch folder and
+    the brick works in the copy of the program's folder, as a brick works in the program's folder
+    (working_folder.py); it then reads nothing of the originals.  None: it works in its scratch
+    folder and may read `readable` where it is."""
     compile_brick_code()
     limits = limits or BrickLimits()
     scratch = Path(tempfile.mkdtemp(prefix="ev3sim2d-brick-", dir=scratch_in))
@@ -351,19 +360,24 @@ def start_brick(
             _let_through(Path(scratch_in))
     console = open_console(scratch / CONSOLE_FILE)  # (the program may replace the name, not this)
     try:
+        working = None if program is None else make_working_folder(scratch, list(readable), program)
+        if working is not None and hasattr(os, "geteuid") and os.geteuid() == 0:
+            _hand_over(scratch)
+        cwd = scratch if working is None else working.folder
         if portable():
-            brick = _start_over_loopback(scratch, console, spin, limits)
+            brick = _start_over_loopback(scratch, cwd, console, spin, limits)
         else:
-            brick = _start_with_socket_pair(scratch, console, shared_memory, spin, zygote)
+            brick = _start_with_socket_pair(scratch, cwd, console, shared_memory, spin, zygote)
     except BaseException:
         os.close(console)
         raise
+    brick.working = working
     _running.add(brick.popen.pid)
     _brick_sessions.add(brick.popen.pid)
     if brick.job is None:  # (a Job Object limits its processes' memory together itself)
         brick.memory = memory_watch.watch(brick.popen.pid, limits.memory_mb)
-    read_paths = [str(shim_root() / "ev3dev2"), *(str(p) for p in readable)]
-    return brick, read_paths
+    originals = [str(p) for p in readable] if working is None else []
+    return brick, [str(shim_root() / "ev3dev2"), *originals]
 
 
 def _boot_argv(*arguments: str, scratch: Path) -> list[str]:
@@ -386,7 +400,15 @@ def _outside_layers(job: job_object.JobObject | None) -> dict:
     return layers
 
 
-def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) -> BrickProcess:
+def _hand_over(scratch: Path) -> None:
+    """Give the brick's unprivileged user what was copied into its scratch folder (it gives up root
+    before it writes), without following a link."""
+    for folder, folders, files in os.walk(scratch):
+        for name in folders + files:
+            os.lchown(os.path.join(folder, name), UNPRIVILEGED_UID, UNPRIVILEGED_UID)
+
+
+def _start_with_socket_pair(scratch, cwd, console: int, shared_memory, spin, zygote) -> BrickProcess:
     """A brick given one end of a socket pair (and shared memory, where there is some) as inherited fds."""
     ours, theirs = socket.socketpair()
     memory_fd = create_memory() if shared_memory and shared_memory_available() else -1
@@ -394,7 +416,7 @@ def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) 
     popen = None
     if zygote is not None:
         try:
-            popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, console)
+            popen = zygote.spawn(scratch, theirs.fileno(), memory_fd, console, cwd=cwd)
         except RuntimeError:  # ZygoteGone
             popen = None
     if popen is None:
@@ -403,7 +425,7 @@ def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) 
             stdin=subprocess.DEVNULL,
             stdout=console,
             stderr=console,
-            cwd=scratch,
+            cwd=cwd,
             env=brick_environment(scratch),
             pass_fds=passed,
             start_new_session=True,
@@ -420,7 +442,7 @@ def _start_with_socket_pair(scratch, console: int, shared_memory, spin, zygote) 
     return BrickProcess(popen, channel, scratch, console, outside=_outside_layers(None))
 
 
-def _start_over_loopback(scratch, console: int, spin, limits: BrickLimits) -> BrickProcess:
+def _start_over_loopback(scratch, cwd, console: int, spin, limits: BrickLimits) -> BrickProcess:
     """A brick that connects back over loopback TCP with the token it reads from its standard input,
     in a Job Object where the system has them (assigned before it hears a word from the simulator)."""
     listener = LoopbackListener()
@@ -431,7 +453,7 @@ def _start_over_loopback(scratch, console: int, spin, limits: BrickLimits) -> Br
             stdin=subprocess.PIPE,
             stdout=console,
             stderr=console,
-            cwd=scratch,
+            cwd=cwd,
             env=brick_environment(scratch),
             **options,
         )
@@ -470,10 +492,14 @@ def brick_welcome(
     seed: int,
     limits: BrickLimits,
     sandbox: bool = True,
+    arguments: Sequence[str] = (),
 ) -> list:
     """The welcome a brick started here gets: its robot's name, the clock, the seed, its program, and
     the sandbox it must enter (what it may read and write, its limits; None: no sandbox).  Paths go as
-    the brick names them (bricks_path)."""
+    the brick names them (bricks_path); the program is its copy where the brick works in one.
+    arguments: the program's own command line after its name (sys.argv[1:]); sys.argv[0] is the
+    program's name, as `python3 prog.py ARG...` in its folder gives it on a brick."""
+    ran = program if brick.working is None else brick.working.program
     return [
         "welcome",
         {
@@ -481,8 +507,9 @@ def brick_welcome(
             "robot": robot,
             "tick_us": tick_us,
             "seed": seed,
-            "program": bricks_path(program),
-            "program_dirs": [bricks_path(program.parent)],
+            "program": bricks_path(ran),
+            "program_dirs": [bricks_path(ran.parent)],
+            "argv": [ran.name, *(str(a) for a in arguments)],
             "shim_root": bricks_path(shim_root()),
             "site_packages": [bricks_path(p) for p in site_packages()],
             "sandbox": {

@@ -55,6 +55,7 @@ class RunResult:
     limit: str | None = None  # the brick's limit it ran into: cpu, memory, output
     sandbox: list[dict] = field(default_factory=list)  # per brick: the isolation it got, layer by layer
     robots: list[dict] = field(default_factory=list)  # per robot: its name, how its program ended and why
+    notes: list[str] = field(default_factory=list)  # what the user should know that is not an error
 
     @property
     def ok(self) -> bool:
@@ -134,6 +135,7 @@ def run_programs(
     program_seed: int | None = None,
     spin: bool = True,
     zygote=None,
+    arguments: Sequence[str] = (),
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -148,6 +150,8 @@ def run_programs(
     spin: whether simulator and bricks may spin while they wait for each other (False when other runs
     share the cores, as in a class run with --jobs 2).
     zygote: a BrickZygote to fork the bricks from (a class run's), instead of starting each afresh.
+    arguments: every program's command line after its name (its sys.argv[1:]).
+    Each brick works in a copy of its program's folder (simulator/working_folder.py).
     Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
     simulator's): a program learns of the world only by its sensors.
     """
@@ -166,12 +170,14 @@ def run_programs(
             path = program.path.resolve()
             may_read = readable[i] if readable else [path.parent]
             brick, read_paths = start_brick(
-                list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote, limits=limits
+                list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote, limits=limits, program=path
             )
             bricks.append(brick)
             brick_seed = seed if program_seed is None else program_seed
             brick.channel.send(
-                brick_welcome(brick, read_paths, path, names[i], sim.tick_us, brick_seed, limits, sandbox)
+                brick_welcome(
+                    brick, read_paths, path, names[i], sim.tick_us, brick_seed, limits, sandbox, arguments
+                )
             )
             ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
         for port in ports:
@@ -187,11 +193,21 @@ def run_programs(
             gone = ports[i].gone if i < len(ports) else "start"
             ending = gone is None or gone.startswith(("gone", "start"))
             brick.stop(patience_s=2.0 if ending else 0.0)
-    shown = [(str(p.path), str(p.path.resolve())) for p in loaded]
+    shown = [(str(p.path), ran_as(p.path.resolve(), brick)) for p, brick in zip(loaded, bricks, strict=False)]
     result = run_result(sim, shown, ports, bricks, wall, session)
+    result.notes += [
+        f"{p.path}: {b.working.note}"
+        for p, b in zip(loaded, bricks, strict=False)
+        if b.working and b.working.note
+    ]
     del sim, ports, session
     gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
     return result
+
+
+def ran_as(path: Path, brick: BrickProcess | None) -> str:
+    """The program's path as its brick knew it: its copy in the folder the brick worked in."""
+    return str(path if brick is None or brick.working is None else brick.working.program)
 
 
 def play(

@@ -100,12 +100,21 @@ class BrickZygote:
     def pid(self) -> int:
         return self.popen.pid
 
-    def spawn(self, scratch: Path, conn_fd: int, memory_fd: int, console_fd: int) -> ZygoteChild:
-        """A new brick on these fds, working in scratch, on this process's cores; ZygoteGone if none."""
+    def spawn(
+        self, scratch: Path, conn_fd: int, memory_fd: int, console_fd: int, cwd: Path | None = None
+    ) -> ZygoteChild:
+        """A new brick on these fds, with its scratch folder, working in cwd (default: scratch), on
+        this process's cores; ZygoteGone if none."""
         mine, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         try:
             cpus = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
-            request = json.dumps({"scratch": str(scratch), "memory": memory_fd >= 0, "cpus": cpus}).encode()
+            request = {
+                "scratch": str(scratch),
+                "cwd": str(cwd or scratch),
+                "memory": memory_fd >= 0,
+                "cpus": cpus,
+            }
+            request = json.dumps(request).encode()
             fds = [conn_fd, *([memory_fd] if memory_fd >= 0 else []), console_fd, theirs.fileno()]
             try:
                 socket.send_fds(self.control, [request], fds)
