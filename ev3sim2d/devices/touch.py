@@ -23,7 +23,9 @@ DEFAULT_BUMPER_CM = 2.0
 class TouchSensor(LegoSensor):
     KIND = "touch"
     DRIVER = "lego-ev3-touch"
-    MODES = {"TOUCH": Mode(1, 0, "", "s8", 0, 1, noisy=False)}
+    MODES = {
+        "TOUCH": Mode(1, 0, "", "s32", 0, 1, noisy=False)
+    }  # (lego-linux-drivers sensors/ev3_analog_sensor_defs.c)
     FACINGS = ("forward",)
     FACING_HINTS = {
         "down": "a touch sensor facing down would be pressed by the floor all the time; write `facing: forward`"
