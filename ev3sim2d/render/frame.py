@@ -18,6 +18,7 @@ from ..results.output_files import writing
 from ..results.trace import Trace
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
+from ..world.world import World
 from . import palette
 from .layout import DEFAULT_SIZE, FrameLayout
 from .panel import Panel
@@ -40,6 +41,12 @@ from .world_layer import draw_world
 CAPTION_MIN_S = 1.5  # speech captions stay at least this long in the video
 
 
+def world_of(trace: Trace) -> World:
+    """The trace's world, as drawn: read from the text the trace holds, without its robot files (the
+    trace holds its robots; the world file's folder may be far away, or on another computer)."""
+    return parse_maze(trace.world["text"], trace.world.get("name") or "<trace>", robots=False)
+
+
 class FrameRenderer:
     """Draws the frame at any simulated time t; fastest when t only moves forward."""
 
@@ -47,7 +54,7 @@ class FrameRenderer:
         self.trace = trace
         self.speed = speed
         self.timeline = Timeline(trace)
-        self.world = parse_maze(trace.world["text"], trace.world.get("name") or "<trace>")
+        self.world = world_of(trace)
         self.layout = FrameLayout.video(self.world.grid.size_cm, *size)
         self.view = self.layout.view
         self.looks = robot_looks(trace.robots)
@@ -81,7 +88,7 @@ class FrameRenderer:
         count = bisect_right([t for t, _ in self._cell_events], t_s)
         if count == self._cells_shown:
             return
-        world = parse_maze(self.trace.world["text"], self.trace.world.get("name") or "<trace>")
+        world = world_of(self.trace)
         grid = world.grid
         for _, cell in self._cell_events[:count]:
             grid = grid.with_cell(cell["col"], cell["row"], Cell(cell["wall"], cell["shade"], cell["color"]))
@@ -201,7 +208,7 @@ def save_png(image: np.ndarray, path: str | Path) -> None:
 
 def draw_world_picture(trace: Trace, width_px: int = 800) -> np.ndarray:
     """The world with every robot at its start, and a caption: for previews and documentation (`show`)."""
-    world = parse_maze(trace.world["text"], trace.world.get("name") or "<trace>")
+    world = world_of(trace)
     grid = world.grid
     layout = FrameLayout.picture(grid.size_cm, width_px, caption_lines=2)
     image = np.empty((layout.height, layout.width, 3), dtype=np.uint8)

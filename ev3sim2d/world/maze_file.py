@@ -30,9 +30,10 @@ def load_maze(path: str | Path) -> World:
     return parse_maze(read_text_file(path), str(path))
 
 
-def parse_maze(text: str, path: str = "<string>") -> World:
-    """Read a maze from YAML text; `path` names it in errors and resolves a relative `robot:` file."""
-    return World(**read_maze(text, path))
+def parse_maze(text: str, path: str = "<string>", robots: bool = True) -> World:
+    """Read a maze from YAML text; `path` names it in errors and resolves a relative `robot:` file
+    (robots=False: robot files are not looked for, see read_maze)."""
+    return World(**read_maze(text, path, robots))
 
 
 def maze_from_text_grid(

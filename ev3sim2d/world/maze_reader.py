@@ -57,9 +57,11 @@ _START_KEYS = ("cell", "x_cm", "y_cm", "heading_deg", "robot")
 # -- reading ----------------------------------------------------------------------------
 
 
-def read_maze(text: str, path: str = "<string>") -> dict[str, Any]:
+def read_maze(text: str, path: str = "<string>", robots: bool = True) -> dict[str, Any]:
     """A World's fields (its keyword arguments) read from a world file's YAML text; `path` names the
-    file in errors and resolves a relative `robot:` file."""
+    file in errors and resolves a relative `robot:` file.  robots=False: its robot files are not looked
+    for (the world and start robots are the driving base): a trace's world, drawn from a trace that
+    holds its robots itself, far from the folder its world file was in."""
     root = load_yaml_text(text, path)
     if not root.is_mapping:
         raise root.error(f"a maze file is a mapping of keys like `title: My maze`, got {root.describe()}")
@@ -80,9 +82,9 @@ def read_maze(text: str, path: str = "<string>") -> dict[str, Any]:
     cells = read_text_grid(rows, legend, path)
     grid = Grid(cells.rows, cell_cm, legend, text="\n".join(row.text for row in rows))
     _check_size_and_border(grid_node, rows, grid)
-    starts, start_robots = _starts(fields.require("start", _START_EXAMPLE), grid, path)
+    starts, start_robots = _starts(fields.require("start", _START_EXAMPLE), grid, path if robots else None)
     regions = _regions(fields.get("regions"), cells.region_cells, grid)
-    robot = _robot(fields.get("robot"), path)
+    robot = _robot(fields.get("robot"), path) if robots else default_robot()
     ambient = fields.number("ambient", default=DEFAULT_AMBIENT, unit="0..100", example="ambient: 10")
     if not 0 <= ambient <= 100:
         raise fields.get("ambient").error(f"'ambient' is a light level from 0 to 100, got {ambient:g}")
@@ -198,13 +200,14 @@ def _check_size_and_border(node: Node, rows: list[TextRow], grid: Grid) -> None:
 # -- starts --------------------------------------------------------------------------------
 
 
-def _starts(node: Node, grid: Grid, path: str) -> tuple[list[Pose], list[RobotSpec | None]]:
-    """The start poses, and per start the robot it names (None: the world's robot)."""
+def _starts(node: Node, grid: Grid, path: str | None) -> tuple[list[Pose], list[RobotSpec | None]]:
+    """The start poses, and per start the robot it names (None: the world's robot; path None: robot files
+    are not looked for)."""
     items = node.as_list("start", _START_EXAMPLE) if node.is_sequence else [node]
     if not items:
         raise node.error(f"'start' needs at least one pose; write e.g. `{_START_EXAMPLE}`")
     poses = [_start(item, grid) for item in items]
-    robots = [_start_robot(item, path) for item in items]
+    robots = [_start_robot(item, path) if path is not None else None for item in items]
     return poses, robots
 
 
