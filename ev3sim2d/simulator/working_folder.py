@@ -8,19 +8,22 @@ as on the brick, writes land in the copy, and nothing written outlasts the run.
 
 The copy is made by the simulator from files a student controls, so it follows no link (a link to a
 lesson's hidden variants is not copied), opens nothing but regular files (no FIFO, no device), and is
-bounded: at most MAX_FILES files and MAX_BYTES bytes, MAX_DEPTH folders deep; hidden files and folders
-(.git, .venv) and __pycache__ are left out.  What did not fit is said in `note`.
+bounded: at most MAX_ENTRIES files and folders and MAX_BYTES bytes, MAX_DEPTH folders deep, nearest the
+program first, and it stops looking when that is spent (a program run from a folder of thousands of
+files costs no more); hidden files and folders (.git, .venv) and __pycache__ are left out.  That
+something did not fit is said in `note`.
 """
 
 from __future__ import annotations
 
 import os
 import stat
+from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
 
-MAX_BYTES = 64 * 2**20
-MAX_FILES = 2000
+MAX_BYTES = 32 * 2**20
+MAX_ENTRIES = 500  # files and folders
 MAX_DEPTH = 16
 CHUNK = 1 << 20
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
@@ -70,23 +73,29 @@ def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> W
 
 class _Budget:
     def __init__(self) -> None:
-        self.files = self.bytes = self.left_out = 0
+        self.files = self.bytes = 0
+        self.full = False  # something was left out
 
     def allows(self, size: int) -> bool:
-        if self.files + 1 > MAX_FILES or self.bytes + size > MAX_BYTES:
-            self.left_out += 1
+        """Whether a file of this size (a folder: 0) fits; it is counted if so."""
+        if self.files + 1 > MAX_ENTRIES or self.bytes + size > MAX_BYTES:
+            self.full = True
             return False
         self.files += 1
         self.bytes += size
         return True
 
+    def spent(self) -> bool:
+        """Nothing more fits: the copy stops looking (a folder of thousands of files costs no more)."""
+        return self.files >= MAX_ENTRIES or self.bytes >= MAX_BYTES
+
     def note(self) -> str | None:
-        if not self.left_out:
+        if not self.full:
             return None
         return (
-            f"the program's folder holds more than its brick's copy may ({MAX_FILES} files, "
-            f"{MAX_BYTES // 2**20} MB, {MAX_DEPTH} folders deep): {self.left_out} file(s) or folder(s) "
-            "were left out of the folder the program works in"
+            f"its folder holds more than a brick's copy may ({MAX_ENTRIES} files and folders, {MAX_BYTES // 2**20} MB, "
+            f"{MAX_DEPTH} folders deep), so the program works in a copy without some of them (the files "
+            "nearest the program were copied first); keep a program in a folder of its own"
         )
 
 
@@ -111,9 +120,13 @@ def _left_out(name: str) -> bool:
 
 
 def _copy_tree(source: Path, target: Path, budget: _Budget) -> None:
-    stack = [(source, target, 0)]
-    while stack:
-        folder, copy, depth = stack.pop()
+    """The folder's files and folders, nearest first (breadth first), until the budget is spent."""
+    waiting = deque([(source, target, 0)])
+    while waiting:
+        if budget.spent():
+            budget.full = True
+            return
+        folder, copy, depth = waiting.popleft()
         try:
             entries = sorted(os.scandir(folder), key=lambda e: e.name)
         except OSError:
@@ -121,13 +134,16 @@ def _copy_tree(source: Path, target: Path, budget: _Budget) -> None:
         for entry in entries:
             if _left_out(entry.name):
                 continue
+            if budget.spent():
+                budget.full = True
+                return
             try:
                 if entry.is_dir(follow_symlinks=False):
-                    if depth + 1 < MAX_DEPTH:
+                    if depth + 1 < MAX_DEPTH and budget.allows(0):
                         (copy / entry.name).mkdir()
-                        stack.append((Path(entry.path), copy / entry.name, depth + 1))
+                        waiting.append((Path(entry.path), copy / entry.name, depth + 1))
                     else:
-                        budget.left_out += 1
+                        budget.full = True
                 elif entry.is_file(follow_symlinks=False):
                     _copy_file(Path(entry.path), copy / entry.name, budget)
             except OSError:

@@ -130,15 +130,18 @@ def test_a_folder_too_big_to_copy_is_cut_and_the_run_says_so(tmp_path, monkeypat
     folder, program = _program_folder(tmp_path, "import os\nprint(len(os.listdir('data')))\n")
     for i in range(10):
         (folder / "data" / f"frame{i:02}.bin").write_bytes(b"x" * 100)
-    monkeypatch.setattr(working_folder, "MAX_FILES", 6)
+    monkeypatch.setattr(working_folder, "MAX_ENTRIES", 6)
     monkeypatch.chdir(tmp_path)
     status = cli.main(["run", "robot/prog.py", "--time", "2", "--maze", "empty"])
     out, err = capsys.readouterr()
     assert status == 0, err
     assert "[   0.000 s] " in out and out.split("] ")[1].strip().isdigit()
-    assert int(out.split("] ")[1]) < 11  # (prog.py, tuning.py and part of data/)
-    assert "ev3sim2d: note: robot/prog.py: the program's folder holds more than its brick's copy may" in err
-    assert "6 files" in err
+    assert int(out.split("] ")[1]) == 3  # prog.py, tuning.py, data/ and 3 of its files: nearest first
+    assert (
+        "ev3sim2d: note: robot/prog.py: its folder holds more than a brick's copy may (6 files and folders"
+        in err
+    )
+    assert "keep a program in a folder of its own" in err
 
 
 def test_the_copy_keeps_hidden_files_caches_links_and_fifos_out(tmp_path):
@@ -175,4 +178,32 @@ def test_the_copy_stops_at_its_depth_and_byte_budget(tmp_path, monkeypatch):
     assert not list(copy.folder.rglob("bottom.txt"))
     assert not (copy.folder / "big.bin").exists()
     assert (copy.folder / "prog.py").exists() and (copy.folder / "data" / "gains.txt").exists()
-    assert "2 file(s) or folder(s) were left out" in copy.note
+    assert "the files nearest the program were copied first" in copy.note
+
+
+def test_a_program_in_a_folder_of_thousands_of_files_starts_as_fast_as_one_in_its_own(tmp_path, monkeypatch):
+    """A student's program saved in Downloads: the copy takes the nearest files and stops looking, so
+    the time it takes does not grow with the folder (it opened and counted every file before)."""
+    crowded = tmp_path / "Downloads"
+    for i in range(40):
+        deep = crowded / f"unpacked{i:02}" / "src"
+        deep.mkdir(parents=True)
+        for j in range(60):
+            (deep / f"file{j}.txt").write_text("x")
+    program = crowded / "prog.py"
+    program.write_text("print('hi')\n")
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    looked_in = []
+    real_scandir = os.scandir
+    monkeypatch.setattr(os, "scandir", lambda path: looked_in.append(path) or real_scandir(path))
+    copy = make_working_folder(scratch, [crowded], program)
+    monkeypatch.undo()
+    copied = list(copy.folder.rglob("*"))
+    assert len(copied) <= working_folder.MAX_ENTRIES + 1  # (+ the program itself, which always goes)
+    assert copy.program.read_text() == "print('hi')\n"
+    assert copy.note is not None
+    # nearest first: every folder beside the program is there; and the walk stopped once the copy was
+    # full: of the 81 folders, the 40 with 60 files each were not all opened (500 entries fit 7 of them)
+    assert len([p for p in copy.folder.iterdir() if p.is_dir()]) == 40
+    assert len(looked_in) < 1 + 40 + 10
