@@ -17,6 +17,7 @@ import os
 import re
 import traceback
 
+from . import suggestions
 from .scheduler import RunOver
 
 BRICK_DIR = os.path.dirname(os.path.realpath(__file__))  # (pathlib would cost each brick 8 ms)
@@ -115,11 +116,12 @@ def error_report(exc: BaseException, program_path: str, t_s: float) -> dict:
     """The program's exception as the simulator reports it (file, line, time, traceback)."""
     frames = [f for f in traceback.extract_tb(exc.__traceback__) if not f.filename.startswith(BRICK_DIR)]
     text = "Traceback (most recent call last):\n" + "".join(traceback.format_list(frames))
-    text += "".join(traceback.format_exception_only(type(exc), exc))
+    *first, last = traceback.format_exception_only(type(exc), exc)
+    text += "".join(first) + suggestions.with_suggestion(last, exc)  # Python's "Did you mean", on any Python
     own = [f for f in frames if f.filename == program_path]
     where = own[-1] if own else (frames[-1] if frames else None)
     file, line = (program_path if own else where.filename, where.lineno) if where else (None, None)
-    message = str(exc)
+    message = suggestions.with_suggestion(str(exc), exc).rstrip("\n")
     if not frames and isinstance(exc, SyntaxError) and exc.lineno:  # the program itself did not compile
         file, line, message = exc.filename, exc.lineno, exc.msg  # shown as Python shows it: no traceback
         text = "".join(traceback.format_exception_only(type(exc), exc))

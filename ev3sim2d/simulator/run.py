@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import gc
 import os
+import re
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -60,6 +61,9 @@ class RunResult:
     @property
     def ok(self) -> bool:
         return self.status in ("finished", "time_limit")
+
+
+EV3_PORTS = {*(f"INPUT_{n}" for n in "1234"), *(f"OUTPUT_{letter}" for letter in "ABCD")}
 
 
 def _describe_devices(robot) -> str:
@@ -284,7 +288,19 @@ def program_error(port: BrickPort, shown: str, real: str) -> dict | None:
     }
     if report["type"] == "DeviceNotFound":
         report["hint"] = f"this robot has: {_describe_devices(port.robot)}"
+    elif report["type"] in ("ImportError", "NameError", "AttributeError") and _no_such_port(
+        report["message"]
+    ):
+        report["hint"] = (
+            "an EV3 has four input ports for sensors, INPUT_1 to INPUT_4, and four output ports for motors, "
+            f"OUTPUT_A to OUTPUT_D; this robot has: {_describe_devices(port.robot)}"
+        )
     return report
+
+
+def _no_such_port(message: str) -> bool:
+    """Whether the message names a port an EV3 does not have (INPUT_5, OUTPUT_E, INPUT_A)."""
+    return any(name not in EV3_PORTS for name in re.findall(r"'((?:INPUT|OUTPUT)_[A-Za-z0-9]+)'", message))
 
 
 def start_failure(result: RunResult) -> str | None:
