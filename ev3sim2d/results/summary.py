@@ -47,6 +47,7 @@ def run_summary(result, programs: list[str], maze: str, seed: int, time_limit_s:
         "time_limit_s": time_limit_s,
         "output": [line.text for line in trace.output],
         "error": result.error,
+        "notes": list(getattr(result, "notes", [])),  # what the user should know that is not an error
         "robots": [robot_summary(trace, i) for i in range(len(trace.robots))],
     }
 

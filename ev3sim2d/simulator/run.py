@@ -19,6 +19,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..devices.motor import RUNNING
 from ..protocol import ProtocolError
 from ..results.trace import OutputLine, Trace
 from ..world.pose import Pose
@@ -440,7 +441,29 @@ def run_result(
         {"robot": port.robot.name, "status": own["status"], "reason": own["reason"]}
         for port, (own, _) in zip(ports, ends, strict=False)
     ]
-    return RunResult(status, reason, t, wall, trace, error, limit, sandbox, robots)
+    notes = [
+        note
+        for port, (own, _) in zip(ports, ends, strict=False)
+        if own["status"] in ("finished", "error") and (note := left_running(port, len(ports)))
+    ]
+    return RunResult(status, reason, t, wall, trace, error, limit, sandbox, robots, notes)
+
+
+def left_running(port: BrickPort, robots: int = 1) -> str | None:
+    """What a brick would do with the motors a program left running when it ended (brickrun, which Brickman
+    starts a program with, resets every tacho motor as the program ends; a program started over SSH leaves
+    them running), or None when none was."""
+    running = [name for name, motor in port.robot.motors.items() if motor.state_bits & RUNNING]
+    if not running:
+        return None
+    who = f"{port.robot.name}: " if robots > 1 else ""
+    motors = f"motor {running[0]} was" if len(running) == 1 else f"motors {', '.join(running)} were"
+    return (
+        f"{who}the program ended while {motors} still running. On an EV3, a program started from Brickman "
+        "ends with its motors reset (brickrun stops them), as this run ends; one started over SSH "
+        "(`python3 prog.py`) leaves them running until something stops them. To stop the robot either "
+        "way, stop them before the program ends (e.g. `tank.off()`)."
+    )
 
 
 def echo_line(stream, robots: int = 1, *, show: Callable[[str], str]) -> Callable[[OutputLine], None]:
