@@ -27,3 +27,17 @@ from ev3dev2.sensor.lego import *  # noqa: F403
 from ev3dev2.sound import *  # noqa: F403
 
 platform = get_current_platform()  # noqa: F405
+if platform == "fake":
+    from ev3dev2._platform.fake import (  # noqa: F401
+        INPUT_1,
+        INPUT_2,
+        INPUT_3,
+        INPUT_4,
+        LED_COLORS,
+        LED_GROUPS,
+        LEDS,
+        OUTPUT_A,
+        OUTPUT_B,
+        OUTPUT_C,
+        OUTPUT_D,
+    )

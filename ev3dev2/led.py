@@ -13,6 +13,8 @@ from ev3dev2._platform.ev3 import LED_COLORS, LED_DEFAULT_COLOR, LED_GROUPS, LED
 from ev3dev2.stopwatch import StopWatch
 
 platform = get_current_platform()
+if platform == "fake":
+    from ev3dev2._platform.fake import LED_COLORS, LED_DEFAULT_COLOR, LED_GROUPS, LEDS
 
 
 class Led(Device):

@@ -29,6 +29,8 @@ from ev3dev2._platform.ev3 import OUTPUT_A, OUTPUT_B, OUTPUT_C, OUTPUT_D  # noqa
 from ev3dev2.stopwatch import StopWatch
 
 platform = get_current_platform()
+if platform == "fake":
+    from ev3dev2._platform.fake import OUTPUT_A, OUTPUT_B, OUTPUT_C, OUTPUT_D  # noqa: F401
 
 log = getLogger(__name__)
 

@@ -1,8 +1,8 @@
 """Port names of the 'fake' platform, a computer without a brick's board (FAKE_SYS set, or no
 /sys/class/board-info/) (as python-ev3dev2 2.1.0).
 
-A program on the simulated EV3 may import it, as on a real EV3; get_current_platform() says 'ev3', so the
-library itself never uses it.
+The simulated brick is an EV3, so the library uses these names only when the environment sets
+FAKE_SYS, as python-ev3dev2's own tests do (get_current_platform() then says 'fake').
 """
 
 OUTPUT_A = "outA"

@@ -8,6 +8,8 @@ from ev3dev2 import Device, _attribute, get_current_platform, list_device_names
 from ev3dev2._platform.ev3 import INPUT_1, INPUT_2, INPUT_3, INPUT_4  # noqa: F401
 
 platform = get_current_platform()
+if platform == "fake":
+    from ev3dev2._platform.fake import INPUT_1, INPUT_2, INPUT_3, INPUT_4  # noqa: F401
 
 
 class Sensor(Device):
