@@ -20,7 +20,8 @@ class InfraredSensor(LegoSensor):
     DRIVER = "lego-ev3-ir"
     MODES = {
         "IR-PROX": Mode(1, 0, "pct", "s8", 0, 100),
-        "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 127, noisy=False),
+        # headings -25..25, distances 0..100 or -128 for no beacon (the driver's @value0..7)
+        "IR-SEEK": Mode(8, 0, "pct", "s8", -128, 100, noisy=False),
         "IR-REMOTE": Mode(4, 0, "btn", "s8", 0, 11, noisy=False),
         "IR-REM-A": Mode(1, 0, "", "s16", 0, 32767, noisy=False),
         "IR-S-ALT": Mode(4, 0, "pct", "s8", 0, 100, noisy=False),
