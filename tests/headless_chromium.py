@@ -1,7 +1,8 @@
 """Debian's Chromium, driven by playwright (never `playwright install`), for the browser tests.
 
 Without playwright or Chromium a browser test is skipped, except in CI (CI=true), where .ci/run
-installs Chromium and the test must run.
+installs Chromium and the test must run.  Where there is no Chromium (Windows, macOS: the OS matrix
+of .github/workflows/tests.yml), an installed Google Chrome, Chromium's own build, does.
 """
 
 import os
@@ -15,10 +16,24 @@ ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking", "--d
 
 
 def executable() -> str | None:
-    for candidate in ("/usr/bin/chromium", shutil.which("chromium"), shutil.which("chromium-browser")):
+    for candidate in (
+        "/usr/bin/chromium",
+        shutil.which("chromium"),
+        shutil.which("chromium-browser"),
+        *_chrome(),
+    ):
         if candidate and Path(candidate).is_file():
             return candidate
     return None
+
+
+def _chrome() -> list[str]:
+    """Where Google Chrome installs itself on macOS and on Windows."""
+    found = ["/Applications/Google Chrome.app/Contents/MacOS/Google Chrome"]
+    for folder in ("PROGRAMFILES", "PROGRAMFILES(X86)", "LOCALAPPDATA"):
+        if os.environ.get(folder):
+            found.append(os.path.join(os.environ[folder], "Google", "Chrome", "Application", "chrome.exe"))
+    return found
 
 
 @contextmanager

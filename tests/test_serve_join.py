@@ -213,7 +213,10 @@ def test_a_join_that_disconnects_mid_run_is_dropped_and_the_others_run_on(serve,
     victim = _join(served.address, talker, "--robot", "1", cwd=tmp_path)
     other = _join(served.address, ender, "--robot", "2", cwd=tmp_path)
     assert "tick 0" in victim.stdout.readline()  # the run has started
-    os.killpg(victim.pid, signal.SIGKILL)  # the student's computer goes away (join and brick with it)
+    if hasattr(os, "killpg"):  # the student's computer goes away (join and brick with it)
+        os.killpg(victim.pid, signal.SIGKILL)
+    else:  # (no process groups: the brick's Job Object ends it with its join)
+        victim.kill()
     victim.wait()
     out, err = other.communicate(timeout=120)
     served.finish()
@@ -312,7 +315,7 @@ def test_a_brick_that_stalls_mid_run_is_dropped_as_hung_and_the_run_goes_on(serv
     assert ender.returncode == 0 and "] done" in out, err
     served.finish()
     summary = _summary(tmp_path / "served.json")
-    assert summary["status"] == "hung" and "the program's computer sent nothing" in summary["reason"]
+    assert summary["status"] == "hung" and "the program on the other computer ran" in summary["reason"]
     assert summary["sim_time_s"] == pytest.approx(5, abs=0.05)  # the other program still ran to its end
     stalled.close()
 

@@ -71,15 +71,36 @@ RENDER_CEILING_S = 5.0  # a video of an attacker's trace (or a hand-made one), a
 TICK = 10_000
 
 # The simulator, its peak resident memory said on stderr as it exits (the bricks are other processes):
-# VmHWM (getrusage's ru_maxrss would count the peak of the process that started it, kept across exec).
+# VmHWM (getrusage's ru_maxrss would count the peak of the process that started it, kept across exec);
+# without /proc, ru_maxrss (in bytes on macOS), and on Windows, which has neither, the peak working set.
 MEASURED = """\
-import resource, runpy, sys
+import runpy, sys
 def peak_kb():
     try:
         with open("/proc/self/status") as status:
             return next(int(line.split()[1]) for line in status if line.startswith("VmHWM:"))
     except (OSError, StopIteration):
-        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+        pass
+    try:
+        import resource
+    except ImportError:
+        return windows_peak_kb()
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return peak // 1024 if sys.platform == "darwin" else peak
+def windows_peak_kb():
+    import ctypes
+    from ctypes import wintypes
+    sizes = ("PeakWorkingSetSize WorkingSetSize QuotaPeakPagedPoolUsage QuotaPagedPoolUsage "
+             "QuotaPeakNonPagedPoolUsage QuotaNonPagedPoolUsage PagefileUsage PeakPagefileUsage").split()
+    class Counters(ctypes.Structure):  # PROCESS_MEMORY_COUNTERS (psapi.h)
+        _fields_ = [("cb", wintypes.DWORD), ("PageFaultCount", wintypes.DWORD)] + [(n, ctypes.c_size_t) for n in sizes]
+    kernel32 = ctypes.WinDLL("kernel32", use_last_error=True)
+    kernel32.GetCurrentProcess.restype = wintypes.HANDLE
+    kernel32.K32GetProcessMemoryInfo.argtypes = [wintypes.HANDLE, ctypes.c_void_p, wintypes.DWORD]
+    counters = Counters(cb=ctypes.sizeof(Counters))
+    if not kernel32.K32GetProcessMemoryInfo(kernel32.GetCurrentProcess(), ctypes.byref(counters), counters.cb):
+        raise ctypes.WinError(ctypes.get_last_error())
+    return counters.PeakWorkingSetSize // 1024
 sys.argv = ["ev3sim2d", *sys.argv[1:]]
 try:
     runpy.run_module("ev3sim2d", run_name="__main__", alter_sys=True)

@@ -203,6 +203,7 @@ def run_twice(tmp_path: Path, source: str, *options: str) -> tuple[str, str]:
     return outputs[0], outputs[1]
 
 
+@pytest.mark.needs_linux("posix_clocks")  # (READINGS: clock_gettime, setitimer, alarm)
 def test_every_clock_reads_the_same_in_two_runs_and_moves_with_the_virtual_time(tmp_path):
     printed, reason = run_twice(tmp_path, READINGS)
     assert "finished" in reason, reason
@@ -260,6 +261,7 @@ def test_every_clock_reads_the_same_in_two_runs_and_moves_with_the_virtual_time(
         assert seconds == "0.250000", name
 
 
+@pytest.mark.needs_linux("posix_clocks")
 def test_a_timer_ends_the_program_at_the_same_virtual_moment_in_every_run(tmp_path):
     printed, reason = run_twice(tmp_path, TIMER)
     assert "killed by SIGALRM (at 0.50 s)" in reason
@@ -274,11 +276,13 @@ def test_a_timer_ends_the_program_at_the_same_virtual_moment_in_every_run(tmp_pa
     ]
 
 
+@pytest.mark.needs_linux("posix_clocks")
 def test_an_alarm_ends_a_program_that_waits_for_ever(tmp_path):
     _, reason = run_twice(tmp_path, "import signal, threading\nsignal.alarm(2)\nthreading.Event().wait()\n")
     assert "killed by SIGALRM (at 2.00 s)" in reason
 
 
+@pytest.mark.needs_linux("posix_clocks")  # (READINGS)
 def test_two_gradings_print_the_same_lines_and_score_the_same(tmp_path):
     lesson = write_lesson(tmp_path / "lesson", time_s=10)
     program = write_program(tmp_path, "student.py", TELLS_GRADINGS_APART)
@@ -314,6 +318,7 @@ for path in ("/proc/uptime", "/proc/self/stat", "/proc/self/schedstat", "/proc/s
         assert line.endswith(" closed"), line
 
 
+@pytest.mark.needs_linux("select_on_pipes")
 def test_a_wait_without_a_timeout_waits_for_a_thread_in_virtual_time_and_for_a_process_in_real_time(tmp_path):
     source = """\
 import os, select, subprocess, sys, threading, time

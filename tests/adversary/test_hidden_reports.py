@@ -34,6 +34,10 @@ from ev3sim2d.grading.scoring import check_results, hidden_texts
 from tests.grading.lesson_maker import LESSON, write_lesson, write_program
 from tests.grading.trace_maker import record, room
 
+# The class holds a program that fills the memory (SAME_OUTCOME["memory"]): it is only graded where a
+# limit stops it, and ending by it is one of the ways of ending every test here counts on.
+pytestmark = pytest.mark.needs_linux("memory_limit")
+
 ROOT = Path(__file__).resolve().parents[2]
 
 # The wall ahead of the start: 37 cm away (near) or 97 cm (far); the goal 20 to 30 cm ahead in both.

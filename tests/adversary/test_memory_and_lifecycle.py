@@ -69,6 +69,7 @@ def test_children_within_the_budget_run_on(tmp_path):
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="a forked worker's rlimit (Windows: a Job Object)")
+@pytest.mark.needs_linux("memory_limit")  # (macOS refuses RLIMIT_AS: a worker has no ceiling there)
 def test_every_grading_worker_has_a_memory_ceiling_of_its_own(tmp_path):
     """A lesson's own check runs in the worker: it reads the worker's address-space ceiling."""
     lesson = write_lesson(

@@ -741,6 +741,7 @@ def test_no_capabilities_left_even_when_started_as_root(run_brick):
     stopped(brick, ["setuid 0", "setgroups", "chown to root"], ("capabilities",))
 
 
+@pytest.mark.needs_linux("proc")  # (processes_with: what is left, found in /proc)
 def test_nothing_the_program_starts_outlives_it(run_brick, scratch):
     """Trick: setsid() and fork a grandchild that sleeps through the end of the run and then
     writes a file (or rewrites the reports)."""
@@ -915,6 +916,7 @@ def test_every_layer_is_reported_and_on(run_brick):
         assert brick.report["root_dropped"] == "not root", brick.report
 
 
+@pytest.mark.needs_linux("proc")  # (NoNewPrivs read in /proc/self/status)
 def test_probe_says_what_the_kernel_offers():
     """Not a trick: probe() tells, without entering anything, what a brick would get here."""
     before = _status_line("NoNewPrivs")
@@ -945,6 +947,7 @@ def _status_line(key: str) -> str:
         return next(line for line in f if line.startswith(key + ":"))
 
 
+@pytest.mark.needs_linux("linux_kernel")  # (elsewhere the doctor lists Linux's layers as others')
 def test_doctor_prints_a_line_per_layer():
     """Not a trick: `ev3sim2d doctor` says, layer by layer, what a brick gets here; exit 0."""
     from ev3sim2d.commands import doctor

@@ -16,9 +16,7 @@ from ev3sim2d.world.maze_file import find_maze, load_maze
 
 from ..test_determinism import SOURCES
 
-pytestmark = pytest.mark.skipif(
-    not hasattr(socket, "send_fds") or not hasattr(socket, "SOCK_SEQPACKET"), reason="needs fd passing"
-)
+pytestmark = pytest.mark.needs_linux("fork", "unix_sockets")  # a zygote forks, and is handed fds
 
 STEERED = """\
 {source}
@@ -181,6 +179,7 @@ def _children(pid: int) -> set[int]:
     return found
 
 
+@pytest.mark.needs_linux("proc")
 def test_a_brick_cannot_ask_the_zygote_for_a_brick_of_its_own(zygote, tmp_path):
     """A student who knows the zygote forks bricks from requests on a socket tries every descriptor,
     and every socket object the zygote left in its forked memory, to ask for a brick whose welcome

@@ -129,7 +129,8 @@ SUBMISSION_NAME = {
     cheat: HAND_IN_AS.get(cheat, Path(cheat).stem if cheat in LINKED_MAIN else cheat) for cheat in CHEAT_RUN
 }
 
-pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the containment needs Linux")
+# the containment (namespaces, overlays) and the walls the cheats run into are Linux's
+pytestmark = pytest.mark.needs_linux("linux_kernel")
 
 
 # -- what a class run left -------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 """Finding what was handed in: a file, a student's folder, or a class folder."""
 
+from pathlib import Path
+
 from ev3sim2d.grading.submission import find_submissions
 
 from .lesson_maker import GOOD, write_program
@@ -27,7 +29,7 @@ def test_a_class_folder_holds_one_submission_per_file_or_folder(tmp_path):
     write_program(tmp_path / "dave", "two.py", GOOD)
     (tmp_path / "erin").mkdir()
     (tmp_path / "__pycache__").mkdir()
-    found = {s.name.split("/")[-1]: s for s in find_submissions([tmp_path])}
+    found = {Path(s.name).name: s for s in find_submissions([tmp_path])}
     assert sorted(found) == ["alice.py", "bob", "carol", "dave", "erin"]
     assert found["carol"].entry.name == "my_robot.py"
     assert found["dave"].entry is None and "several programs (one.py, two.py)" in found["dave"].problem

@@ -41,7 +41,8 @@ class InstalledVenv:
 
     @property
     def bin(self) -> Path:
-        return self.venv / "bin"
+        """Where the venv's commands are: bin/, or Scripts\\ on Windows."""
+        return scripts_folder(self.venv)
 
     def environment(self) -> dict[str, str]:
         """The user's environment with this venv activated, as `source .venv/bin/activate` would."""
@@ -50,13 +51,19 @@ class InstalledVenv:
         environment["PATH"] = f"{self.bin}{os.pathsep}{environment.get('PATH', '/usr/bin:/bin')}"
         return environment
 
-    def run(self, *command: str, cwd: Path, timeout: float = 300, shell: bool = False):
-        """Run a command (the installed `ev3sim2d`, `python`, ...) in `cwd`, as a user would type it."""
+    def run(
+        self, *command: str, cwd: Path, timeout: float = 300, shell: bool = False, env: dict | None = None
+    ):
+        """Run a command (the installed `ev3sim2d`, `python`, ...) in `cwd`, as a user would type it
+        (`env`: variables the user sets besides)."""
+        environment = {**self.environment(), **(env or {})}
+        if not shell:  # found on the venv's PATH, as a shell finds it (Windows looks in the caller's own)
+            command = (shutil.which(command[0], path=environment["PATH"]) or command[0], *command[1:])
         return subprocess.run(
             command[0] if shell else list(command),
             shell=shell,
             cwd=cwd,
-            env=self.environment(),
+            env=environment,
             capture_output=True,
             text=True,
             timeout=timeout,
@@ -87,10 +94,16 @@ def make(folder: Path) -> InstalledVenv:
     wheel = build_wheel(folder)
     venv = folder / "venv"
     _check([sys.executable, "-m", "venv", str(venv)])
-    pip = [str(venv / "bin" / "python"), "-m", "pip", "install", "-q"]
+    pip = [str(scripts_folder(venv) / "python"), "-m", "pip", "install", "-q"]
     _check([*pip, str(wheel)])  # the README's install
     _check([*pip, f"{wheel}[plot]"])  # then the `plot` extra docs/python-api.ipynb asks for
     return InstalledVenv(venv, wheel)
+
+
+def scripts_folder(venv: Path) -> Path:
+    """A venv's folder of commands: `Scripts` where Python makes that one (Windows), else `bin`."""
+    scripts = venv / "Scripts"
+    return scripts if scripts.is_dir() and not (venv / "bin").is_dir() else venv / "bin"
 
 
 def from_environment() -> InstalledVenv | None:

@@ -10,6 +10,7 @@ import shlex
 import subprocess
 import sys
 
+import pytest
 import yaml
 
 from tests.installed.installed_venv import ROOT
@@ -85,6 +86,7 @@ def test_nothing_of_the_hidden_variants_is_uploaded():
             assert ".hidden" not in " ".join(paths) and "." not in paths and "*" not in " ".join(paths)
 
 
+@pytest.mark.needs_linux("posix_shell")  # the step's command, as the workflow's ubuntu job's bash runs it
 def test_the_grade_step_gives_classroom_points_out_of_the_lessons_max(installed, user_folder):
     [grade] = [step for step in steps() if step.get("id") == "grade"]
     command = " ".join(grade["run"].split())

@@ -106,6 +106,9 @@ def test_the_reader_finds_commands_leaves_synopses_and_honours_skip_markers(tmp_
     ]
 
 
+@pytest.mark.needs_linux(
+    "posix_shell"
+)  # the docs' commands are written for one (Windows': docs/platforms.md)
 @pytest.mark.parametrize("document", DOCUMENTS, ids=lambda path: path.name)
 def test_every_command_in_the_document_runs(document, installed, user_folder):
     ran, failed = [], []

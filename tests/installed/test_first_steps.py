@@ -58,7 +58,13 @@ def test_lessons_lists_a_teachers_own_folder_too(installed, user_folder):
     )
     done = installed.run("ev3sim2d", "lessons", "--dir", "my-lessons", cwd=user_folder)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.splitlines()[-1].split() == ["my-lessons/spin", "Spin:", "Turn", "round", "twice."]
+    assert done.stdout.splitlines()[-1].split() == [
+        str(Path("my-lessons", "spin")),
+        "Spin:",
+        "Turn",
+        "round",
+        "twice.",
+    ]
     missing = installed.run("ev3sim2d", "lessons", "--dir", "nowhere", cwd=user_folder)
     assert missing.returncode == 2 and "nowhere" in missing.stderr
 

@@ -8,12 +8,15 @@ import subprocess
 import time
 import urllib.request
 
+import pytest
+
 
 def _get(url: str) -> bytes:
     with urllib.request.urlopen(url, timeout=10) as answer:
         return answer.read()
 
 
+@pytest.mark.needs_linux("signals")  # Ctrl+C, played as SIGINT
 def test_live_serves_its_page_and_api_and_leaves_a_trace(installed, user_folder):
     installed.run("ev3sim2d", "examples", cwd=user_folder)
     live = subprocess.Popen(

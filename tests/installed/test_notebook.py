@@ -35,19 +35,18 @@ def test_the_notebook_runs_on_the_installed_package_and_shows_the_run_the_chart_
     (kernel / "kernel.json").write_text(
         json.dumps({"argv": argv, "display_name": "ev3sim2d", "language": "python"})
     )
-    notebook = json.loads(NOTEBOOK.read_text())
+    notebook = json.loads(NOTEBOOK.read_text(encoding="utf-8"))
     assert not any(c.get("outputs") for c in notebook["cells"] if c["cell_type"] == "code"), (
         "docs/python-api.ipynb is kept without outputs; clear them before committing"
     )
     shutil.copy(NOTEBOOK, user_folder / "python-api.ipynb")
     (user_folder / "run_notebook.py").write_text(textwrap.dedent(RUN))
     done = installed.run(
-        "env",
-        f"JUPYTER_PATH={user_folder / 'kernels'}",
         "python",
         "run_notebook.py",
         cwd=user_folder,
         timeout=300,
+        env={"JUPYTER_PATH": str(user_folder / "kernels")},
     )
     assert done.returncode == 0, done.stderr[-3000:]
     facts = json.loads(done.stdout.splitlines()[-1])

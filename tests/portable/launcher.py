@@ -20,6 +20,8 @@ import other_system
 other_system.apply({kind!r})
 del sys.path[0]
 sys.executable = os.path.abspath(sys.argv[0])
+if sys.path and sys.path[0] == os.path.dirname(sys.executable):
+    del sys.path[0]  # this launcher's folder: the program's own first entry takes its place below
 args = sys.argv[1:]
 flags = []
 while args and args[0].startswith("-") and args[0] not in ("-m", "-c", "-"):
@@ -29,15 +31,20 @@ if "-B" in flags:
     sys.dont_write_bytecode = True
 if not args:
     raise SystemExit("launcher: no program")
+safe_path = "-P" in flags or "-I" in flags
 if args[0] == "-m":
     sys.argv = args[1:]
+    if not safe_path:
+        sys.path.insert(0, os.getcwd())  # as `python -m` puts the working folder first
     runpy.run_module(args[1], run_name="__main__", alter_sys=True)
 elif args[0] == "-c":
     sys.argv = ["-c", *args[2:]]
+    if not safe_path:
+        sys.path.insert(0, "")  # as `python -c` does: the working folder
     exec(compile(args[1], "<string>", "exec"), {{"__name__": "__main__"}})
 else:
     sys.argv = args
-    if "-P" not in flags and "-I" not in flags:
+    if not safe_path:
         sys.path.insert(0, os.path.dirname(os.path.abspath(args[0])))
     runpy.run_path(args[0], run_name="__main__")
 """

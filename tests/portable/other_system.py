@@ -2,13 +2,14 @@
 
 A stand-in for the systems CI runs in its OS matrix, so that the portable code paths run here, in
 every process: what the other system lacks is taken away (modules, functions, flags, signals, socket
-families, subprocess options, the C library's Linux calls, /proc), and a few behaviours are imitated
-(Windows' socketpair over loopback TCP, its select() that takes only sockets, its CDLL(None) that
-fails; macOS' RLIMIT_AS refusal, its infinite open-files limit, its socketpair without
-SOCK_SEQPACKET, its fork that Python does not use by default).  It cannot give Windows paths or
-consoles, hide /proc from the kernel, or make Linux system call numbers other calls, and it keeps what
-the standard library's own POSIX code needs (os.WNOHANG for subprocess): the real systems' runs belong
-to the workflow's OS matrix (.github/workflows/tests.yml).
+families, subprocess options, the C library's Linux calls, /proc on macOS, dir_fd= on Windows), and a
+few behaviours are imitated (Windows' socketpair over loopback TCP, its select() that takes only
+sockets, its CDLL(None) that fails; macOS' RLIMIT_AS refusal, its infinite open-files limit, its
+socketpair without SOCK_SEQPACKET, its fork that Python does not use by default).  It cannot give
+Windows paths or consoles, hide /proc from the kernel (nor, on Windows, from Python), or make Linux
+system call numbers other calls, and it keeps what the standard library's own POSIX code needs
+(os.WNOHANG for subprocess): the real systems' runs belong to the workflow's OS matrix
+(.github/workflows/tests.yml).
 
 `python launcher.py -m ev3sim2d ...`: launcher.py applies this (EV3SIM2D_OTHER_SYSTEM says which)
 and becomes sys.executable, so every Python process started through sys.executable (bricks,
@@ -37,13 +38,17 @@ setresuid setresgid pipe2 unshare setns eventfd O_PATH O_DIRECT""".split()
 WINDOWS_LACKS_IN_SIGNAL = """SIGKILL SIGSTOP SIGHUP SIGQUIT SIGALRM SIGCHLD SIGUSR1 SIGUSR2 SIGPIPE SIGCONT
 SIGTSTP SIGTTIN SIGTTOU SIGXCPU SIGXFSZ SIGVTALRM SIGPROF SIGWINCH SIGIO SIGSYS SIGTRAP SIGBUS SIGPOLL
 SIGPWR pthread_kill pthread_sigmask sigwait setitimer getitimer siginterrupt alarm pause
-pidfd_send_signal""".split()
+pidfd_send_signal ITIMER_REAL ITIMER_VIRTUAL ITIMER_PROF ItimerError SIG_BLOCK SIG_UNBLOCK
+SIG_SETMASK""".split()
 WINDOWS_LACKS_IN_TIME = """clock_gettime clock_gettime_ns clock_settime clock_getres CLOCK_BOOTTIME
 CLOCK_MONOTONIC_RAW CLOCK_PROCESS_CPUTIME_ID CLOCK_THREAD_CPUTIME_ID CLOCK_TAI pthread_getcpuclockid
 tzset""".split()
 WINDOWS_LACKS_IN_SOCKET = """AF_UNIX SOCK_SEQPACKET SO_PEERCRED SCM_RIGHTS send_fds recv_fds sendmsg
 recvmsg MSG_DONTWAIT sethostname if_nameindex""".split()
-LINUX_ONLY_C_CALLS = {"prctl", "unshare", "capget", "capset", "setns", "mallopt", "pidfd_open"}
+LINUX_ONLY_C_CALLS = {
+    "prctl", "unshare", "capget", "capset", "setns", "mallopt", "pidfd_open", "process_vm_readv",
+    "process_vm_writev",
+}  # fmt: skip
 
 
 def apply(kind: str) -> None:
@@ -91,6 +96,7 @@ def _windows() -> None:
     for name in BLOCKED_ON_WINDOWS:
         sys.modules.pop(name, None)
     _remove(os, WINDOWS_LACKS_IN_OS)
+    os.supports_dir_fd.clear()  # no call takes dir_fd= there
     _remove(signal, WINDOWS_LACKS_IN_SIGNAL)
     _remove(time, WINDOWS_LACKS_IN_TIME)
     _remove(select, ("poll", "epoll", "POLLIN", "POLLOUT", "EPOLLIN"))
@@ -188,30 +194,43 @@ def _macos() -> None:
         real_set(which, (-1 if soft == infinite else soft, -1 if hard == infinite else hard))
 
     resource.getrlimit, resource.setrlimit = getrlimit, setrlimit
-    real_open, real_listdir, real_os_open = builtins.open, os.listdir, os.open
 
     def in_proc(path) -> bool:
-        return isinstance(path, str | bytes) and os.fsdecode(path).startswith("/proc")
+        if not isinstance(path, str | bytes | os.PathLike):
+            return False  # (a descriptor)
+        name = os.fsdecode(os.fspath(path))
+        return name == "/proc" or name.startswith("/proc/")
 
-    def no_proc_open(file, *args, **options):
-        if in_proc(file):
-            raise FileNotFoundError(errno.ENOENT, "No such file or directory", file)
-        return real_open(file, *args, **options)
+    def without_proc(real):
+        """`real` (open, os.open, os.stat, ...), for which /proc does not exist: macOS has none."""
 
-    def no_proc_listdir(path="."):
-        if in_proc(path):
-            raise FileNotFoundError(errno.ENOENT, "No such file or directory", path)
-        return real_listdir(path)
+        asks = real is os.access  # (which answers False, where the others raise)
 
-    def no_proc_os_open(path, flags, mode=0o777, *, dir_fd=None):
-        if in_proc(path):
-            raise FileNotFoundError(errno.ENOENT, "No such file or directory", path)
-        return real_os_open(path, flags, mode, dir_fd=dir_fd)
+        def hidden(*args, **options):
+            path = args[0] if args else options.get("path", options.get("file"))
+            if in_proc(path) and options.get("dir_fd") is None:
+                if asks:
+                    return False
+                raise FileNotFoundError(errno.ENOENT, "No such file or directory", path)
+            return real(*args, **options)
 
-    builtins.open, os.listdir, os.open = no_proc_open, no_proc_listdir, no_proc_os_open
+        hidden.__name__, hidden.__qualname__, hidden.__doc__ = real.__name__, real.__qualname__, real.__doc__
+        for able in (
+            os.supports_dir_fd,
+            os.supports_fd,
+            os.supports_follow_symlinks,
+            os.supports_effective_ids,
+        ):
+            if real in able:  # (what a program asks before it passes dir_fd=, a descriptor, ...)
+                able.add(hidden)
+        return hidden
+
+    builtins.open = without_proc(builtins.open)
+    for name in ("listdir", "scandir", "open", "stat", "lstat", "access"):
+        setattr(os, name, without_proc(getattr(os, name)))
     import io
 
-    io.open = no_proc_open
+    io.open = builtins.open
     platform.machine = lambda: "arm64"
     import multiprocessing
 
