@@ -56,17 +56,19 @@ def zygote():
     z.close()
 
 
-@pytest.mark.parametrize("start", ["fresh", "zygote", "portable"])
-def test_a_program_reads_its_data_and_writes_its_logs_beside_itself(tmp_path, zygote, monkeypatch, start):
+@pytest.mark.parametrize(
+    "start",
+    ["fresh", pytest.param("zygote", marks=pytest.mark.needs_linux("fork", "unix_sockets")), "portable"],
+)
+def test_a_program_reads_its_data_and_writes_its_logs_beside_itself(tmp_path, request, monkeypatch, start):
     """brickrun --directory: relative paths are the program's folder (fails on a brick working in an
     empty scratch folder, with the program's folder read-only: FileNotFoundError, then PermissionError)."""
     if start == "portable":
         monkeypatch.setenv("EV3SIM2D_PORTABLE", "1")
     folder, program = _program_folder(tmp_path)
     before = sorted(p.relative_to(folder) for p in folder.rglob("*"))
-    result = run_programs(
-        [program], arena(), time_limit_s=5, hang_after_s=2, zygote=zygote if start == "zygote" else None
-    )
+    zygote = request.getfixturevalue("zygote") if start == "zygote" else None
+    result = run_programs([program], arena(), time_limit_s=5, hang_after_s=2, zygote=zygote)
     assert result.status == "finished", (result.reason, result.error)
     assert _printed(result) == ["gains ['1.5', '0.02']", "read back 0,1 ran", "tuning 1.5"]
     # what it wrote was the copy's: the student's folder is as it was, and the run left nothing behind
@@ -86,6 +88,7 @@ def test_an_error_names_the_program_and_its_modules_as_the_student_named_them(tm
     assert "ev3sim2d-brick-" not in result.error["traceback"]
 
 
+@pytest.mark.needs_linux("symlinks")
 def test_a_link_in_the_folder_is_not_followed(tmp_path):
     """The copy is made by the simulator from files a student controls: a link to a file or folder
     elsewhere (a lesson's hidden variants, the teacher's home) is not copied, so not readable."""
@@ -144,6 +147,7 @@ def test_a_folder_too_big_to_copy_is_cut_and_the_run_says_so(tmp_path, monkeypat
     assert "keep a program in a folder of its own" in err
 
 
+@pytest.mark.needs_linux("symlinks")
 def test_the_copy_keeps_hidden_files_caches_links_and_fifos_out(tmp_path):
     """What the copy holds: regular files and folders, none hidden (.git, .venv), no __pycache__,
     no link, no FIFO (a FIFO would block the simulator that copies it)."""
