@@ -15,6 +15,21 @@ the motor is `overloaded`.
 Runs end exactly: run-to-*-pos lands on position_sp and run-timed turns for
 exactly time_sp, even when that falls between two ticks.
 
+A motor that drives no wheel (an arm, a gripper, a launcher) turns its shaft as
+planned (`turn_free`) unless the robot file gives it an end stop or a load.  At
+an end stop (`limits_deg`) the shaft stops dead, as against a hard stop.  A load
+(`load_pct`, a torque in % of the motor's stall torque, resisting whichever way
+the shaft turns, never turning it by itself) takes that much of the motor's
+power, as a DC motor's torque falls linearly with its speed: a regulated run at
+full duty reaches (100 - load_pct) % of max_speed, run-direct at duty d turns at
+(d - load_pct) % of it, and a coasting shaft stops at once.  Such a motor reports
+`stalled` as the driver does: once its speed has been 0 for 100 ms while it runs
+(update_stall); and, like the driver, it keeps running then: a run-to-*-pos
+that cannot reach position_sp stays `running` (and `overloaded`: its speed PID
+drives the duty cycle to 100 %) until the program stops it, while
+python-ev3dev2's blocking moves return as soon as `stalled` shows
+(wait_until_not_moving).
+
 Driver behaviour mirrored here is from github.com/ev3dev/lego-linux-drivers:
 motors/tacho_motor_class.c (commands, ramps, PID attributes), ev3/legoev3_motor.c
 (stall, run to position, state), motors/ev3_motor_defs.c (PID defaults).
@@ -62,13 +77,19 @@ class TachoMotor(Device):
     sysfs_class = "tacho-motor"
     name_prefix = "motor"
 
-    def __init__(self, address: str, kind: str) -> None:
+    def __init__(
+        self, address: str, kind: str, limits_deg: tuple[float, float] | None = None, load_pct: float = 0.0
+    ) -> None:
+        """`limits_deg` and `load_pct`: what the shaft of a motor that drives no wheel meets (`turn_free`)."""
         driver_name, max_speed, hold_kp = KINDS[kind]
         super().__init__(address, driver_name)
         self.kind = kind
         self.max_speed = max_speed
         self.hold_kp = hold_kp
         self.count_per_rot = 360
+        self.limits_deg = limits_deg  # the end stops, in degrees from where the shaft started the run
+        self.load_pct = float(load_pct)
+        self.angle_deg = 0.0  # where the shaft is from where it started (no command resets it)
         self._reset()
         r, w = self.readers, self.writers
         r.update(
@@ -172,7 +193,7 @@ class TachoMotor(Device):
         if mode == "direct":
             return self.duty_cycle_sp
         dps = self._drive_dps()
-        duty = self._lag_duty or 100 * abs(dps) / self.max_speed
+        duty = self._lag_duty or min(100 * abs(dps) / self.max_speed + self.load_pct, 100.0)
         return int(round(math.copysign(duty, dps * self.sign))) if dps else 0
 
     def _set_position(self, value: str) -> None:
@@ -336,8 +357,33 @@ class TachoMotor(Device):
             distance *= max(self.run_left_s, 0.0) / dt
         return v1, distance, ramping
 
-    def measured(self, planned: float, turned: float, dt: float) -> None:
-        """The shaft really turned `turned` degrees of the `planned` ones during the tick."""
+    def turn_free(self, dt: float) -> None:
+        """A tick of a motor that drives no wheel: the shaft turns as planned, less what its load takes,
+        and no further than its end stops."""
+        if self.load_pct and self.mode == "coast":
+            self.coast_dps = 0.0  # the load stops a coasting shaft at once
+        planned = self.plan(dt)
+        turned = planned
+        if self.load_pct and planned:
+            if self.mode == "direct":  # duty d turns it at (d - load) % of max_speed
+                free_pct = abs(self.duty_cycle_sp) - self.load_pct
+            else:  # the speed PID drives it up to 100 % duty
+                free_pct = 100.0 - self.load_pct
+            reach = max(free_pct, 0.0) / 100.0 * self.max_speed * dt
+            if abs(turned) > reach:
+                turned = math.copysign(reach, turned)
+        if self.limits_deg is not None:
+            low, high = self.limits_deg
+            turned = min(max(self.angle_deg + turned, low), high) - self.angle_deg
+        self.angle_deg += turned
+        self.measured(planned, turned, dt, stall_when_still=True)
+
+    def measured(self, planned: float, turned: float, dt: float, stall_when_still: bool = False) -> None:
+        """The shaft really turned `turned` degrees of the `planned` ones during the tick.
+
+        A wheel's motor counts as stalled when its shaft turns less than a quarter of the plan (a robot
+        held by a wall may still creep); with `stall_when_still` (a motor that drives no wheel) as the
+        driver counts it: when its speed has been 0 for TACHO_MOTOR_STALLED_MS."""
         mode = self.mode
         if mode == "ramped":
             ramp_dps, _, ramping = self._ramp_plan(dt)  # before the shaft moves, as plan() saw it
@@ -375,6 +421,9 @@ class TachoMotor(Device):
                 self._lag_s = 0.0
                 self._stop()  # ramps down first if ramp_down_sp is set (run_timed_work)
                 return
+        if stall_when_still:
+            self._stall_when_still(planned, turned, dt, mode, ramp_bit)
+            return
         # stall: a shaft that keeps turning much less than planned (or not at all, at speed 0), or
         # backwards (a robot pushed back by another); the driver reports stalled after
         # TACHO_MOTOR_STALLED_MS of no motion (update_stall)
@@ -387,6 +436,23 @@ class TachoMotor(Device):
         bits = 0 if mode == "direct" else self._push(abs(planned - turned) / dt)
         if self._lag_s >= STALL_WINDOW_S - 1e-9:
             bits |= STALLED
+        self.state_bits = RUNNING | ramp_bit | bits
+
+    def _stall_when_still(self, planned: float, turned: float, dt: float, mode: str, ramp_bit: int) -> None:
+        """State bits as legoev3_motor.c sets them: `stalled` once the speed (whole counts/s) has been 0 for
+        TACHO_MOTOR_STALLED_MS while running (update_stall); `overloaded` while the speed PID, pushing a
+        shaft that lags its plan, is at full duty (tm_pid_is_overloaded).  Neither ends the run."""
+        bits = 0
+        if abs(planned - turned) > 1e-9 and mode != "direct":
+            bits = self._push(abs(planned - turned) / dt)
+        elif self._lag_duty:  # the PID's pushing ends with the lag
+            self._error_sum = self._lag_duty = 0.0
+        if round(turned / dt) == 0:
+            self._lag_s += dt  # (here: how long the shaft has stood still)
+            if self._lag_s >= STALL_WINDOW_S - 1e-9:
+                bits |= STALLED
+        else:
+            self._lag_s = 0.0
         self.state_bits = RUNNING | ramp_bit | bits
 
     def _drive_dps(self) -> float:
@@ -407,7 +473,7 @@ class TachoMotor(Device):
             return 0
         pid = self.pid
         self._error_sum += error
-        duty = 100.0 * abs(self._drive_dps()) / self.max_speed
+        duty = 100.0 * abs(self._drive_dps()) / self.max_speed + self.load_pct  # (a load needs its share)
         duty += (pid["speed_pid/Kp"] * error + pid["speed_pid/Ki"] * self._error_sum) / PID_SCALE
         if duty > 100.0:
             self._error_sum -= error

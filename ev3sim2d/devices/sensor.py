@@ -42,6 +42,7 @@ class Surroundings(Protocol):
 
     def sensor_pose(self, mount: tuple[float, float, float]) -> tuple[float, float, float]: ...
     def ray(self, x: float, y: float, direction: float, max_cm: float) -> float | None: ...
+    def cone(self, x: float, y: float, direction: float, half_rad: float, max_cm: float) -> float | None: ...
     def near(self, x: float, y: float, reach_cm: float) -> bool: ...
 
 
@@ -87,6 +88,7 @@ class LegoSensor(Device):
         super().__init__(address, self.DRIVER)
         self.spec = spec
         self.around = surroundings
+        self._cone = getattr(surroundings, "cone", None)  # (the robot's; see nearest_in_cone)
         self.noise = float(getattr(spec, "noise", 0.0) or 0.0)
         # where it sits: radius (cm), direction from the robot centre and aim (radians from the heading)
         self.mount = (
@@ -194,15 +196,16 @@ class LegoSensor(Device):
         raise NotImplementedError
 
     def nearest_in_cone(self, cone_deg: float, max_cm: float) -> float:
-        """Distance to the nearest wall or robot along three rays (the cone's axis and edges); max_cm if none."""
+        """Distance to the nearest point of a wall or robot anywhere inside the cone (`cone_deg` wide, around
+        the way the sensor faces); max_cm if none is nearer."""
         x, y, facing = self.position()
-        half = math.radians(cone_deg) / 2.0
-        best = max_cm
-        for offset in (0.0, -half, half):
-            hit = self.around.ray(x, y, facing + offset, best)
-            if hit is not None and hit < best:
-                best = hit
-        return best
+        cone = self._cone
+        if cone is None:  # surroundings that only cast rays (a stand-in): the cone's axis and edges
+            half = math.radians(cone_deg) / 2.0
+            hits = [self.around.ray(x, y, facing + offset, max_cm) for offset in (0.0, -half, half)]
+            return min([max_cm, *(hit for hit in hits if hit is not None)])
+        hit = cone(x, y, facing, cone_deg * (math.pi / 360.0), max_cm)  # (the half-angle)
+        return max_cm if hit is None else hit
 
     def position(self) -> tuple[float, float, float]:
         """Where the sensor is: x, y (cm) and the direction it faces (radians)."""

@@ -1,7 +1,10 @@
 """EV3 ultrasonic sensor facing forward: distance to the nearest wall or robot in a narrow cone.
 
-Three rays (the cone's edges and its axis, `cone_deg` wide, default 15°) from
-the sensor; the shortest hit wins.  0 to 255 cm; 255 cm when nothing is in range.
+The nearest point of a wall or another robot anywhere inside the cone (`cone_deg`
+wide, default 15°, from the sensor), found exactly on every tick, so a corner
+that reaches into the cone between its axis and its edges is seen as long as it
+is in the cone (simulator/physics.py, Physics.cone).  0 to 255 cm; 255 cm when
+nothing is in range.
 
 US-DIST-* (and US-DC-*) measure continuously.  US-SI-CM and US-SI-IN are single
 measurements, as the driver documents them: "A measurement is taken when the

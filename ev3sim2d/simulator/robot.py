@@ -62,6 +62,8 @@ class Robot:
         heading = math.radians(start.heading_deg)
         self.body = physics.add_robot(body_outline(spec), start.x_cm, start.y_cm, heading)
         self.group = self.body.group
+        # cone(x, y, direction, half_rad, max_cm): the nearest wall or other robot in a sensor's cone
+        self.cone = physics.cone_query(self.group)
         self.x, self.y, self.heading_rad = start.x_cm, start.y_cm, heading
         self.turn_rate = 0.0
         self.cm_per_deg = math.pi * spec.wheel_diameter_mm / 10.0 / 360.0
@@ -69,7 +71,7 @@ class Robot:
 
         self.motors: dict[str, TachoMotor] = {}
         for m in sorted(spec.motors, key=lambda m: m.port):
-            self.motors[m.port] = TachoMotor(f"ev3-ports:{m.port}", m.kind)
+            self.motors[m.port] = TachoMotor(f"ev3-ports:{m.port}", m.kind, m.limits_deg, m.load_pct)
         self.left = self.motors[spec.left_wheel.port]
         self.right = self.motors[spec.right_wheel.port]
         # a motor mounted the other way round turns its wheel backwards: -1
@@ -177,10 +179,9 @@ class Robot:
         planned_left, planned_right = self._planned
         self.left.measured(planned_left, self.left_mount * (forward - half_turn) / self.cm_per_deg, dt)
         self.right.measured(planned_right, self.right_mount * (forward + half_turn) / self.cm_per_deg, dt)
-        for motor in self.other_motors:
+        for motor in self.other_motors:  # an arm, a gripper: against its end stops and load, if any
             if motor.mode != "stopped" or motor.speed_dps:
-                turned = motor.plan(dt)
-                motor.measured(turned, turned, dt)
+                motor.turn_free(dt)
         self.turn_rate = dh / dt
         self.x, self.y, self.heading_rad = x, y, heading
         self.tick += 1

@@ -14,7 +14,8 @@ import numpy as np
 
 from ..devices.motor import state_text
 from ..results.trace import Trace
-from ..world.cell import Cell
+from ..world.cell import WALL_SHADE, Cell
+from ..world.colors import DEFAULT_SURFACES, Surfaces
 from ..world.grid import Grid
 from ..world.pose import Pose
 from ..world.robot_spec import RobotSpec
@@ -39,15 +40,16 @@ class Floor:
     raw_rgb: list
 
     @classmethod
-    def of(cls, grid: Grid) -> Floor:
-        return cls(
-            grid.cell_cm,
-            grid.width,
-            grid.height,
-            grid.reflected_rows(),
-            grid.color_id_rows(),
-            grid.raw_rgb_rows(),
-        )
+    def of(cls, grid: Grid, surfaces: Surfaces = DEFAULT_SURFACES) -> Floor:
+        """The tables of the grid's cells, with the readings of the world's `surfaces` (its calibration)."""
+        if surfaces.is_default:
+            reflected, raw_rgb = grid.reflected_rows(), grid.raw_rgb_rows()
+        else:
+            rows = [[grid.cell(col, row) for col in range(grid.width)] for row in range(grid.height)]
+            paint = [[(c.color, WALL_SHADE if c.shade is None else c.shade) for c in cells] for cells in rows]
+            reflected = [[surfaces.reflected(*p) for p in cells] for cells in paint]
+            raw_rgb = [[surfaces.raw_rgb(*p) for p in cells] for cells in paint]
+        return cls(grid.cell_cm, grid.width, grid.height, reflected, grid.color_id_rows(), raw_rgb)
 
 
 class StartBlocked(ValueError):
@@ -65,7 +67,8 @@ class Simulation:
         self.dt = tick_us / 1e6
         self.rng = np.random.default_rng(seed)
         self.physics = Physics(world.grid.wall_rectangles())
-        floor = self.floor = Floor.of(world.grid)
+        surfaces = self.surfaces = getattr(world, "surfaces", DEFAULT_SURFACES)
+        floor = self.floor = Floor.of(world.grid, surfaces)
         ambient = float(getattr(world, "ambient", 10.0) or 10.0)
         self.robots = [
             Robot(name, spec, pose, self.physics, floor, self.rng, ambient) for name, spec, pose in robots
@@ -169,7 +172,7 @@ class Simulation:
                 if self.physics.box_touches(robot.body, box):
                     raise ValueError(f"cell ({col}, {row}) is under robot {i + 1}: move the robot first")
         self.world.set_cell(col, row, cell)
-        fresh = Floor.of(self.world.grid)
+        fresh = Floor.of(self.world.grid, self.surfaces)
         for name in ("reflected", "color_id", "raw_rgb"):  # the sensors hold this Floor: change it in place
             getattr(self.floor, name)[:] = getattr(fresh, name)
         self.physics.set_walls(self.world.grid.wall_rectangles())

@@ -9,10 +9,12 @@ its own text after an edit.
 
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
 from typing import Any
 
 from .button_press import parse_press
+from .colors import DEFAULT_SURFACES, EV3_COLORS, REFLECT_RANGE, RGB_RAW_RANGE, Surfaces
 from .grid import Grid
 from .grid_text import TextRow, first_non_wall_border_cell, read_text_grid
 from .legend import DEFAULT_LEGEND, legend_from_node
@@ -43,6 +45,7 @@ MAZE_KEYS = (
     "robot",
     "ambient",
     "buttons",
+    "surfaces",
 )
 DEFAULT_CELL_CM = 10.0
 MIN_CELLS = 3
@@ -88,6 +91,7 @@ def read_maze(text: str, path: str = "<string>", robots: bool = True) -> dict[st
     ambient = fields.number("ambient", default=DEFAULT_AMBIENT, unit="0..100", example="ambient: 10")
     if not 0 <= ambient <= 100:
         raise fields.get("ambient").error(f"'ambient' is a light level from 0 to 100, got {ambient:g}")
+    surfaces = _surfaces(fields.get("surfaces"))
     buttons = []
     for node in (
         fields.get("buttons").as_list("buttons", "buttons: [enter@2.0]") if "buttons" in fields else []
@@ -109,6 +113,7 @@ def read_maze(text: str, path: str = "<string>", robots: bool = True) -> dict[st
         ambient=ambient,
         buttons=buttons,
         start_robots=start_robots,
+        surfaces=surfaces,
     )
 
 
@@ -328,6 +333,67 @@ def _rect(node: Node, name: str, grid: Grid) -> Rect:
             f"region '{name}' rectangle reaches outside the grid (0..{width:g} x 0..{height:g} cm)"
         )
     return (x0, y0, x1, y1)
+
+
+# -- surfaces --------------------------------------------------------------------------------
+
+_SURFACES_EXAMPLE = "surfaces: {white: {reflect: 92, rgb_raw: [250, 250, 240]}, black: {reflect: 4}}"
+
+
+def _surfaces(node: Node | None) -> Surfaces:
+    """The world's calibration of its floor: per EV3 colour, what COL-REFLECT and RGB-RAW read on it."""
+    if node is None:
+        return DEFAULT_SURFACES
+    fields = node.as_fields("surfaces", None, _SURFACES_EXAMPLE)
+    calibrated: dict[str, dict] = {}
+    reflect_nodes: dict[str, Node] = {}
+    low, high = REFLECT_RANGE
+    raw_low, raw_high = RGB_RAW_RANGE
+    for name in fields:
+        if name not in EV3_COLORS:
+            close = difflib.get_close_matches(name.lower(), EV3_COLORS, n=1)
+            hint = f"did you mean '{close[0]}'? " if close else ""
+            raise fields.key(name).error(
+                f"unknown colour '{name}' in 'surfaces'; {hint}calibrate the EV3 colours: {', '.join(EV3_COLORS)} "
+                "(greys follow black and white)"
+            )
+        example = f"{name}: {{reflect: 50, rgb_raw: [150, 150, 150]}}"
+        entry = fields.get(name).as_fields(name, ("reflect", "rgb_raw"), example)
+        if len(entry) == 0:
+            raise fields.get(name).error(
+                f"'{name}' needs what the sensor reads on it: `reflect` (COL-REFLECT) and/or `rgb_raw` (RGB-RAW); "
+                f"write e.g. `{example}`"
+            )
+        values: dict = {}
+        if "reflect" in entry:
+            reflect = entry.number("reflect", unit="COL-REFLECT, 0..100", example="reflect: 50")
+            if not low <= reflect <= high:
+                raise entry.get("reflect").error(
+                    f"'reflect' is a COL-REFLECT reading, {low:g} to {high:g} (reflected_light_intensity), "
+                    f"got {reflect:g}"
+                )
+            values["reflect"] = reflect
+            reflect_nodes[name] = entry.get("reflect")
+        if "rgb_raw" in entry:
+            rgb_node = entry.get("rgb_raw")
+            rgb = rgb_node.as_numbers("rgb_raw", 3, "RGB-RAW", "rgb_raw: [150, 150, 150]")
+            if not all(raw_low <= v <= raw_high for v in rgb):
+                raise rgb_node.error(
+                    f"'rgb_raw' is an RGB-RAW reading, [red, green, blue] with {raw_low:g} to {raw_high:g} each "
+                    f"(python-ev3dev2's ColorSensor.raw; white paper reads about 300), got "
+                    f"[{', '.join(f'{v:g}' for v in rgb)}]"
+                )
+            values["rgb_raw"] = tuple(rgb)
+        calibrated[name] = values
+    surfaces = Surfaces(calibrated)
+    black, white = surfaces.reflected("black", 0.0), surfaces.reflected("white", 0.0)
+    if not black < white:
+        blame = reflect_nodes.get("white") or reflect_nodes["black"]
+        raise blame.error(
+            f"white must reflect more than black (white reads {white:g}, black {black:g}): greys lie between "
+            "them; calibrate both, e.g. `white: {reflect: 92}` and `black: {reflect: 4}`"
+        )
+    return surfaces
 
 
 # -- robot ----------------------------------------------------------------------------------

@@ -60,12 +60,18 @@ class MotorSpec:
 
     `reversed`: the motor is mounted the other way round, so with normal polarity a positive
     speed turns its wheel backwards (a program for such a robot sets `polarity = 'inversed'`).
+    A motor that drives no wheel (an arm, a gripper) may meet end stops, `limits_deg` (low, high:
+    degrees from where its shaft starts, positive the way a positive speed turns it with normal
+    polarity), and a load, `load_pct` (a torque against its turning, in % of the motor's stall
+    torque: devices/motor.py, TachoMotor.turn_free).
     """
 
     port: str
     kind: str
     wheel: str | None = None
     reversed: bool = False
+    limits_deg: tuple[float, float] | None = None
+    load_pct: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -283,9 +289,15 @@ def _choice(fields: Fields, name: str, choices: tuple[str, ...], default: Any = 
     return word
 
 
+_LIMITS_EXAMPLE = "limits_deg: [-90, 0]"
+_LOAD_EXAMPLE = "load_pct: 30"
+
+
 def _motor(node: Node) -> tuple[MotorSpec, Node]:
     fields = node.as_fields(
-        "motor", ("port", "kind", "wheel", "mounted"), "- {port: B, kind: large, wheel: left}"
+        "motor",
+        ("port", "kind", "wheel", "mounted", "limits_deg", "load_pct"),
+        "- {port: B, kind: large, wheel: left}",
     )
     port = _port(fields.require("port", "port: B"), MOTOR_PORTS, "motor")
     kind = _choice(fields, "kind", _sensor_classes().MOTORS, default="large")
@@ -294,7 +306,36 @@ def _motor(node: Node) -> tuple[MotorSpec, Node]:
     if wheel_node is not None and not wheel_node.is_null and wheel_node.text.strip().lower() != "none":
         wheel = _choice(fields, "wheel", WHEELS)
     mounted = _choice(fields, "mounted", MOUNTINGS, default="normal")
-    return MotorSpec(port, kind, wheel, mounted == "reversed"), node
+    for name in ("limits_deg", "load_pct"):
+        if name in fields and wheel is not None:
+            raise fields.key(name).error(
+                f"'{name}' is for a motor that drives no wheel (an arm, a gripper, a launcher); a wheel motor's "
+                f"shaft turns as the robot moves; remove `{name}` or `wheel: {wheel}`"
+            )
+    limits = _limits(fields.get("limits_deg")) if "limits_deg" in fields else None
+    load = fields.number("load_pct", default=0.0, unit="% of the motor's stall torque", example=_LOAD_EXAMPLE)
+    if not 0 <= load <= 100:
+        raise fields.get("load_pct").error(
+            f"'load_pct' is the torque of the load on the shaft in % of the motor's stall torque, from 0 (none) "
+            f"to 100 (the motor stalls even at full power), got {load:g}; write e.g. `{_LOAD_EXAMPLE}`"
+        )
+    return MotorSpec(port, kind, wheel, mounted == "reversed", limits, load), node
+
+
+def _limits(node: Node) -> tuple[float, float]:
+    """A motor's end stops: [low, high] degrees from where its shaft starts, low <= 0 <= high."""
+    low, high = node.as_numbers("limits_deg", 2, "degrees", _LIMITS_EXAMPLE)
+    if not low < high:
+        raise node.error(
+            f"'limits_deg' is [low, high] with low below high (degrees the shaft can turn from where it starts), "
+            f"got [{low:g}, {high:g}]; write e.g. `{_LIMITS_EXAMPLE}`"
+        )
+    if not low <= 0 <= high:
+        raise node.error(
+            f"the shaft starts at 0 degrees, which must lie within its limits [{low:g}, {high:g}] (the arm starts "
+            f"between its end stops); write e.g. `limits_deg: [{min(low, 0):g}, {max(high, 0):g}]`"
+        )
+    return (low, high)
 
 
 def _sensor(node: Node) -> SensorSpec:
@@ -407,6 +448,10 @@ def robot_yaml(spec: RobotSpec) -> str:
             parts.append(f"wheel: {motor.wheel}")
         if motor.reversed:
             parts.append("mounted: reversed")
+        if motor.limits_deg is not None:
+            parts.append(f"limits_deg: [{_number(motor.limits_deg[0])}, {_number(motor.limits_deg[1])}]")
+        if motor.load_pct:
+            parts.append(f"load_pct: {_number(motor.load_pct)}")
         lines.append(f"  - {{{', '.join(parts)}}}")
     lines += ["", "sensors:" if spec.sensors else "sensors: []"]
     for sensor in spec.sensors:

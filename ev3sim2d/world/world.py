@@ -9,6 +9,7 @@ from pathlib import Path
 from ..results.output_files import write_file
 from .button_press import ButtonPress
 from .cell import Cell
+from .colors import DEFAULT_SURFACES, Surfaces
 from .grid import Grid
 from .legend import LegendEntry, cell_from_words
 from .maze_reader import DEFAULT_AMBIENT, middle_floor_cell, read_maze
@@ -42,6 +43,8 @@ class World:
     buttons: list[ButtonPress] = field(default_factory=list)  # scripted presses of the brick's buttons
     # per start pose: the robot that start names (`robot:` in it), or None for the world's robot
     start_robots: list[RobotSpec | None] = field(default_factory=list)
+    # what the colour sensor reads on this world's floor (`surfaces:`: a calibration for its mat)
+    surfaces: Surfaces = DEFAULT_SURFACES
 
     @property
     def start(self) -> Pose:
