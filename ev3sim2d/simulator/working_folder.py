@@ -10,8 +10,10 @@ The copy is made by the simulator from files a student controls, so it follows n
 lesson's hidden variants is not copied), opens nothing but regular files (no FIFO, no device), and is
 bounded: at most MAX_ENTRIES files and folders and MAX_BYTES bytes, MAX_DEPTH folders deep, nearest the
 program first, and it stops looking when that is spent (a program run from a folder of thousands of
-files costs no more); hidden files and folders (.git, .venv) and __pycache__ are left out.  That
-something did not fit is said in `note`.
+files costs no more); hidden files and folders (.git, .venv) and __pycache__ are left out, and so is
+the temporary folder the scratch folders are made in where it lies inside the program's folder (the
+copy would copy itself, and other bricks' scratch folders).  That something did not fit is said in
+`note`.
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ class WorkingFolder:
 def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> WorkingFolder:
     """Copy what the brick may read into scratch; the folder holding (the copy of) the program is its
     working folder.  A readable entry that is the program's file alone gives a folder with that file."""
-    budget = _Budget()
+    budget = _Budget(_identities(scratch, scratch.parent))
     working = None
     for source in readable:
         source = Path(source)
@@ -72,9 +74,10 @@ def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> W
 
 
 class _Budget:
-    def __init__(self) -> None:
+    def __init__(self, never: frozenset = frozenset()) -> None:
         self.files = self.bytes = 0
         self.full = False  # something was left out
+        self.never = never  # the folders never copied: (device, inode) of the scratch folder and its own
 
     def allows(self, size: int) -> bool:
         """Whether a file of this size (a folder: 0) fits; it is counted if so."""
@@ -119,6 +122,18 @@ def _left_out(name: str) -> bool:
     return name.startswith(".") or name == "__pycache__"
 
 
+def _identities(*folders: Path) -> frozenset:
+    """Folders as (device, inode): what names them (a link, a relative path, letter case) does not matter."""
+    found = set()
+    for folder in folders:
+        try:
+            info = os.stat(folder)
+        except OSError:
+            continue
+        found.add((info.st_dev, info.st_ino))
+    return frozenset(found)
+
+
 def _copy_tree(source: Path, target: Path, budget: _Budget) -> None:
     """The folder's files and folders, nearest first (breadth first), until the budget is spent."""
     waiting = deque([(source, target, 0)])
@@ -139,6 +154,8 @@ def _copy_tree(source: Path, target: Path, budget: _Budget) -> None:
                 return
             try:
                 if entry.is_dir(follow_symlinks=False):
+                    if _identities(Path(entry.path)) & budget.never:
+                        continue  # (the temporary folder: its scratch folders are not the program's)
                     if depth + 1 < MAX_DEPTH and budget.allows(0):
                         (copy / entry.name).mkdir()
                         waiting.append((Path(entry.path), copy / entry.name, depth + 1))

@@ -24,14 +24,16 @@ from tests.grading.lesson_maker import GOOD, write_lesson, write_program
 ROOT = Path(__file__).resolve().parents[2]
 SECRET = "ev3sim2d-test-secret-4f9a1c"
 END_WITHOUT_A_WORD = "import posix\nposix._exit(5)  # (os._exit is the brick's: posix's ends the process)\n"
+# the console is in the scratch folder (HOME), beside the copy of the program's folder it works in
+CONSOLE = "import os\nos.chdir(os.environ['HOME'])\nos.remove('console.log')\n"
 ATTACKS = {
-    "console to environ": "import os\nos.remove('console.log')\nos.symlink('/proc/self/environ', 'console.log')\n",
+    "console to environ": CONSOLE + "os.symlink('/proc/self/environ', 'console.log')\n",
     "console to the simulator's environ": (
-        "import os\nos.remove('console.log')\nos.symlink(f'/proc/{os.getppid()}/environ', 'console.log')\n"
+        CONSOLE + "os.symlink(f'/proc/{os.getppid()}/environ', 'console.log')\n"
     ),
-    "console to /dev/zero": "import os\nos.remove('console.log')\nos.symlink('/dev/zero', 'console.log')\n",
-    "console to a fifo": "import os\nos.remove('console.log')\nos.mkfifo('console.log')\n",
-    "console to its own fd": "import os\nos.remove('console.log')\nos.symlink('/proc/self/fd/1', 'console.log')\n",
+    "console to /dev/zero": CONSOLE + "os.symlink('/dev/zero', 'console.log')\n",
+    "console to a fifo": CONSOLE + "os.mkfifo('console.log')\n",
+    "console to its own fd": CONSOLE + "os.symlink('/proc/self/fd/1', 'console.log')\n",
     "3000 nested folders": (
         "import os\nfor _ in range(3000):\n    os.mkdir('a')\n    open('a/f', 'w').close()\n    os.chdir('a')\n"
     ),

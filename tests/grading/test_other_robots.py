@@ -127,8 +127,8 @@ def graded(tmp_path_factory):
     pacer = lesson.variants[0].others[0].program
     write_program(programs, "a_good.py", GOOD)
     write_program(programs, "b_reads_pacer.py", READS_THEN_DRIVES.format(path=str(pacer)))
-    own = programs / "c_reads_itself.py"  # the same program, given a file it may read: its own
-    write_program(programs, own.name, READS_THEN_DRIVES.format(path=str(own)))
+    own = programs / "c_reads_itself.py"  # the same program, given a file it may read: its own, by the
+    write_program(programs, own.name, READS_THEN_DRIVES.format(path=own.name))  # relative path a brick knows
     grading = grade(lesson, find_submissions([programs]), jobs=2)
     return {Path(r.submission).name: r for r in grading.results}, grading, root
 

@@ -8,6 +8,7 @@ outlasts the run, nothing outside it is readable, and the copy is bounded.
 """
 
 import os
+import tempfile
 import textwrap
 
 import pytest
@@ -211,3 +212,21 @@ def test_a_program_in_a_folder_of_thousands_of_files_starts_as_fast_as_one_in_it
     # full: of the 81 folders, the 40 with 60 files each were not all opened (500 entries fit 7 of them)
     assert len([p for p in copy.folder.iterdir() if p.is_dir()]) == 40
     assert len(looked_in) < 1 + 40 + 10
+
+
+def test_a_temporary_folder_inside_the_programs_folder_is_not_copied(tmp_path, monkeypatch):
+    """A program saved in the folder that holds the system's temporary folder (a teacher's home, a
+    grading folder with TMPDIR inside it): the copy would copy its own scratch folder, and other
+    bricks' scratch folders, until its budget was spent.  They are not the program's files."""
+    folder, program = _program_folder(tmp_path, "import os\nprint(sorted(os.listdir('.')))\n")
+    temporary = folder / "tmp"
+    temporary.mkdir()
+    other = temporary / "ev3sim2d-brick-other"  # another brick's scratch folder, running beside it
+    other.mkdir()
+    (other / "their_program.py").write_text("print('theirs')\n")
+    monkeypatch.setattr(tempfile, "tempdir", str(temporary))
+    result = run_programs([program], arena(), time_limit_s=5, hang_after_s=2)
+    assert result.status == "finished", (result.reason, result.error)
+    assert _printed(result) == ["['data', 'prog.py', 'tuning.py']"]
+    assert result.notes == []
+    assert sorted(p.name for p in temporary.iterdir()) == ["ev3sim2d-brick-other"]  # and cleaned up
