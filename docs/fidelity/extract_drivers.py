@@ -57,10 +57,28 @@ FACTS = {
         r"#define TACHO_MOTOR_STALLED_MS\s+(\d+)",
         "a running motor whose speed has been 0 this long reports stalled (update_stall)",
     ),
-    "position_busy": (
+    "position_busy_test": (
         EV3_MOTOR,
-        r"return -(EBUSY);",
-        "legoev3_motor_set_position: writing position while the motor runs fails with EBUSY",
+        r"if \(legoev3_motor_get_state\(ev3_tm\) & (TM_STATE_RUNNING)\)",
+        "legoev3_motor_set_position returns EBUSY when this is true; get_state sets BIT(TM_STATE_RUNNING) "
+        "and TM_STATE_RUNNING is 0 (state_running_index), so it never is: position is written at any time",
+    ),
+    "state_running_index": (
+        "include/tacho_motor_class.h",
+        r"^\s*(TM_STATE_RUNNING),",
+        "TM_STATE_RUNNING is the first value of enum tacho_motor_state, 0: a flag's index, not its bit",
+    ),
+    "position_write_sets_target": (
+        EV3_MOTOR,
+        r"ev3_tm->position_sp = (position);",
+        "legoev3_motor_set_position makes the written position a run to a position's target, so "
+        "update_position ends that run where the shaft is",
+    ),
+    "rel_pos_after_rel_pos": (
+        TACHO_CLASS,
+        r"if \(tm->params\.command == (TM_COMMAND_RUN_TO_REL_POS)\)",
+        "tm_send_command: when the last command written (command_store sets tm->params.command) was "
+        "run-to-rel-pos, whether it still runs or not, the next one counts from its target",
     ),
     "rel_pos_from_setpoint": (
         TACHO_CLASS,

@@ -460,8 +460,14 @@ def attribute_claim(name: str, tacho: dict, facts: dict) -> str:
         "driver_name": "the driver's name",
         "duty_cycle": "`duty_cycle_sp` in run-direct; -100…100 regulated",
         "duty_cycle_sp": "0 at first; -100…100, else EINVAL; a new one takes effect at once in run-direct",
-        "polarity": "`normal` at first; `normal`, `inversed`, else EINVAL; inversed wheels drive the robot backwards",
-        "position": "counts what the shaft turned; written, reads back",
+        "polarity": (
+            "`normal` at first; `normal`, `inversed`, else EINVAL; inversed wheels drive the robot backwards; "
+            "inversing negates what position and the setpoints read, the shaft turning on as before"
+        ),
+        "position": (
+            "counts what the shaft turned; written, reads back, also while the motor runs; "
+            "written during a run to a position, ends it there"
+        ),
         "max_speed": "the driver's",
         "position_sp": "0 at first; any 32-bit integer, else EINVAL",
         "speed": "the speed turned, in counts/s",
@@ -548,13 +554,7 @@ def probe_attribute(name: str, probe: MotorProbe) -> None:
         probe.tick(100)
         turned = probe.number(name)
         probe.expect(near(turned, 500, 2), f"after 1 s at speed_sp 500 position reads {turned}")
-        busy = error_of(lambda: probe.write(name, 0))
-        probe.checks.detail(
-            busy == errno.EBUSY,
-            "position-written-while-running",
-            f"writing position while the motor runs gives {errno_name(busy)} here; "
-            f"{facts['position_busy']['value']} on a brick",
-        )
+        written_while_running(probe, facts)
         probe.write("stop_action", "hold")
         probe.write("command", "stop")
         probe.tick(10)
@@ -589,6 +589,34 @@ def probe_attribute(name: str, probe: MotorProbe) -> None:
         probe.expect(False, f"no probe for the attribute {name}")
 
 
+def written_while_running(probe: MotorProbe, facts: dict) -> None:
+    """The driver's code: legoev3_motor_set_position's EBUSY test is never true, so position is written
+    while the motor runs too; and the written position becomes a run to a position's target, so that run
+    ends where the shaft is (update_position)."""
+    test, write = facts["position_busy_test"], facts["position_write_sets_target"]
+    failed = error_of(lambda: probe.write("position", 0))
+    probe.expect(
+        failed is None,
+        f"writing position while the motor runs gives {errno_name(failed)}; a brick accepts it "
+        f"({test['file']}:{test['line']} `{test['source']}` masks with {test['value']}, which is 0)",
+    )
+    probe.tick(10)
+    counted = probe.number("position")
+    probe.expect(near(counted, 50, 2), f"written 0 at speed_sp 500, position reads {counted} 100 ms later")
+    probe.write("stop_action", "hold")
+    probe.write("position_sp", 720)
+    probe.write("command", "run-to-abs-pos")
+    probe.tick(20)
+    probe.write("position", 0)
+    probe.tick(5)
+    position, state = probe.number("position"), probe.read("state")
+    probe.expect(
+        position == 0 and state == "holding",
+        f"position 0 written 200 ms into a run-to-abs-pos to 720: {position}, {state!r} 50 ms later; on a "
+        f"brick it ends there ({write['file']}:{write['line']} `{write['source']}`)",
+    )
+
+
 def ramp_time(name: str, probe: MotorProbe) -> None:
     """The speed changes by max_speed per ramp_*_sp ms: to half of max_speed takes half the setpoint."""
     half = probe.spec["max_speed"] // 2
@@ -611,7 +639,9 @@ def ramp_time(name: str, probe: MotorProbe) -> None:
 
 def polarity(probe: MotorProbe) -> None:
     """Inversed, a positive speed turns the shaft the other way: both wheels inversed, the robot backs.
-    The driver's code also negates what position reads (and the setpoints) with the polarity."""
+    The driver's code keeps the count and the setpoints in the motor's frame and negates what position
+    and they read with the polarity (position_show and the others), so inversing it flips their sign
+    and leaves the shaft turning as it did."""
     bench = Bench()
     for port in ("outB", "outC"):
         motor = bench.motor(port)
@@ -624,29 +654,42 @@ def polarity(probe: MotorProbe) -> None:
         bench.robot.x < x0 - 5,
         f"wheels inversed at speed_sp 300: the robot went {bench.robot.x - x0:+.1f} cm",
     )
+    probe.write("polarity", "normal")  # (the checks of the values before left it inversed)
     probe.write("stop_action", "hold")
     probe.write("speed_sp", 360)
     probe.write("position_sp", 90)
     probe.write("command", "run-to-abs-pos")
     probe.tick(50)
-    before = probe.number("position")
+    before = [probe.number(a) for a in ("position", "position_sp", "speed_sp")]
     probe.write("polarity", "inversed")
-    after = probe.number("position")
-    probe.checks.detail(
-        after == -before,
-        "polarity-keeps-position",
-        f"position reads {before}, then {after} once polarity is inversed here; {-before} on a brick",
+    after = [probe.number(a) for a in ("position", "position_sp", "speed_sp")]
+    fact = probe.data["facts"]["position_follows_polarity"]
+    probe.expect(
+        after == [-value for value in before],
+        f"position, position_sp, speed_sp read {before}, then {after} once polarity is inversed; on a brick "
+        f"{[-value for value in before]} ({fact['file']}:{fact['line']} `{fact['source']}`)",
+    )
+    probe.write("command", "run-forever")
+    probe.tick(10)
+    position, speed = probe.number("position"), probe.number("speed")
+    probe.expect(
+        near(position, -126, 1) and speed == -360,
+        f"run-forever at speed_sp 360 written before inversing: position {position}, speed {speed} 100 ms "
+        "later; on a brick the shaft turns on as before, read negated (-126, -360)",
     )
 
 
 COMMAND_CLAIMS = {
     "run-forever": "still running at speed_sp 500 after 2 s, position 1000",
     "run-to-abs-pos": "ends on position_sp 720 (speed_sp -500: the sign is ignored), then `holding`",
-    "run-to-rel-pos": "from 100 by position_sp -300: ends on -200, then `holding`",
+    "run-to-rel-pos": (
+        "from 100 by position_sp -300: ends on -200, then `holding`; right after a run-to-rel-pos, "
+        "counts from its target"
+    ),
     "run-timed": "time_sp 1500 at 400: `running` at 1 s, 600 counts, then `holding`",
     "run-direct": "duty_cycle_sp 50: half of max_speed, duty_cycle 50, `running`",
     "stop": "with coast, brake, hold: speed 0, then state empty, empty, `holding`",
-    "reset": "every setting back to the driver's default, the motor stopped, position 0",
+    "reset": "every setting back to the driver's default; a turning motor coasts to a stop, position 0 where it was reset",
 }
 
 
@@ -676,18 +719,32 @@ def probe_command(name: str, probe: MotorProbe) -> None:
         probe.tick(150)
         position, state = probe.number("position"), probe.read("state")
         probe.expect(position == -200 and state == "holding", f"ends at {position}, {state!r}")
-        # the driver's code: a run-to-rel-pos right after a run-to-rel-pos counts from the previous target
+        # the driver's code: a run-to-rel-pos when the last command was one counts from its target
+        fact = probe.data["facts"]["rel_pos_after_rel_pos"]
         probe.write("position_sp", 360)
         probe.write("command", name)
         probe.tick(10)
         probe.write("command", name)
         probe.tick(300)
         again, expected = probe.number("position"), -200 + 720
-        probe.checks.detail(
+        probe.expect(
             again == expected,
-            "rel-pos-counts-from-position",
-            f"two run-to-rel-pos by 360 from -200, the second sent 100 ms into the first, end at {again} here "
-            f"(where it was + 360); at {expected} on a brick (the first's target + 360)",
+            f"two run-to-rel-pos by 360 from -200, the second sent 100 ms into the first, end at {again}; at "
+            f"{expected} on a brick, the first's target + 360 ({fact['file']}:{fact['line']} `{fact['source']}`)",
+        )
+        probe.write("stop_action", "coast")
+        probe.write("command", name)
+        probe.tick(200)
+        coasted = probe.number("position")
+        probe.write("stop_action", "hold")
+        probe.write("command", "stop")
+        probe.write("command", name)
+        probe.tick(200)
+        after_stop = probe.number("position")
+        probe.expect(
+            coasted > 880 + 5 and after_stop == coasted + 360,
+            f"a run-to-rel-pos by 360 from 520 that coasted on to {coasted}, a stop, another by 360: ends at "
+            f"{after_stop}, not where it was + 360",
         )
     elif name == "run-timed":
         probe.write("speed_sp", 400)
@@ -740,19 +797,22 @@ def reset(probe: MotorProbe) -> None:
     probe.write("command", "run-forever")
     probe.tick(50)
     probe.write("command", "reset")
+    at_reset = probe.number("position")
     probe.tick()
-    rolling = probe.number("speed")
+    rolling, state = probe.number("speed"), probe.read("state")
     wrong = {a: probe.read(a) for a, v in defaults.items() if probe.read(a) != str(v)}
     probe.expect(not wrong, f"after reset: {wrong}")
+    fact = probe.data["facts"]["reset_coasts"]
+    probe.expect(
+        at_reset == 0 and abs(rolling) > 100 and state == "",
+        f"a motor reset at speed 300: position {at_reset}, then speed {rolling}, {state!r} a tick later; on "
+        f"a brick 0, then coasting ({fact['file']}:{fact['line']} `{fact['source']}`)",
+    )
     probe.tick(100)
     state, position = probe.read("state"), probe.number("position")
     probe.expect(state == "" and probe.number("speed") == 0, f"1 s after reset: {state!r}")
-    probe.expect(position == 0, f"after reset position reads {position}")
-    probe.checks.detail(
-        rolling != 0,
-        "reset-stops-dead",
-        f"a motor reset at speed 300 reads speed {rolling} a tick later here; on a brick it coasts to a stop "
-        f"(legoev3_motor_reset: {probe.data['facts']['reset_coasts']['source']})",
+    probe.expect(
+        0 < abs(position) < 60, f"1 s after reset position reads {position}: not the roll-out counted from 0"
     )
 
 

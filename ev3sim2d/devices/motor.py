@@ -15,6 +15,16 @@ the motor is `overloaded`.
 Runs end exactly: run-to-*-pos lands on position_sp and run-timed turns for
 exactly time_sp, even when that falls between two ticks.
 
+As in the driver, the count and the setpoints are kept in the motor's own frame
+and `polarity` only negates position, speed, duty_cycle, position_sp, speed_sp
+and duty_cycle_sp as they are read and written (tacho_motor_class.c): inversing
+it turns a position of 90 into -90 and leaves the shaft alone.  A run-to-rel-pos
+sent when the last command was also run-to-rel-pos counts from that one's target,
+not from where the shaft is (tm_send_command).  `reset` coasts the motor to a
+stop and counts from 0 from there (legoev3_motor_reset).  Writing position is
+accepted at any time, also while the motor runs, and ends a run to a position
+where the shaft is (legoev3_motor_set_position).
+
 A motor that drives no wheel (an arm, a gripper, a launcher) turns its shaft as
 planned (`turn_free`) unless the robot file gives it an end stop or a load.  At
 an end stop (`limits_deg`) the shaft stops dead, as against a hard stop.  A load
@@ -90,6 +100,13 @@ class TachoMotor(Device):
         self.limits_deg = limits_deg  # the end stops, in degrees from where the shaft started the run
         self.load_pct = float(load_pct)
         self.angle_deg = 0.0  # where the shaft is from where it started (no command resets it)
+        self.shaft_deg = 0.0  # the encoder's count in the motor's own frame (float, exact; never reset)
+        # stopped, run, to_pos, timed, direct, coast; or ramped (self.ramp_kind says which run)
+        self.mode = "stopped"
+        self.speed_dps = 0.0  # measured shaft speed, motor frame
+        self.coast_dps = 0.0
+        self.last_command = ""  # the last command written (tacho_motor_class.c: tm->params.command)
+        self.rel_target = 0  # the last run-to-rel-pos's target, in counts (tm->active_params.position_sp)
         self._reset()
         r, w = self.readers, self.writers
         r.update(
@@ -103,10 +120,10 @@ class TachoMotor(Device):
             duty_cycle=lambda: str(self.duty_cycle),
             polarity=lambda: self.polarity,
             stop_action=lambda: self.stop_action,
-            speed_sp=lambda: str(self.speed_sp),
-            position_sp=lambda: str(self.position_sp),
+            speed_sp=lambda: str(self.sign * self.speed_sp),
+            position_sp=lambda: str(self.sign * self.position_sp),
             time_sp=lambda: str(self.time_sp),
-            duty_cycle_sp=lambda: str(self.duty_cycle_sp),
+            duty_cycle_sp=lambda: str(self.sign * self.duty_cycle_sp),
             ramp_up_sp=lambda: str(self.ramp_up_sp),
             ramp_down_sp=lambda: str(self.ramp_down_sp),
         )
@@ -125,7 +142,7 @@ class TachoMotor(Device):
             polarity=self._set_polarity,
             stop_action=self._set_stop_action,
             speed_sp=self._set_speed_sp,
-            position_sp=lambda v: setattr(self, "position_sp", parse_int(v)),  # (a C int's range)
+            position_sp=self._set_position_sp,
             time_sp=self._set_time_sp,
             duty_cycle_sp=self._set_duty_cycle_sp,
             ramp_up_sp=lambda v: setattr(self, "ramp_up_sp", self._ramp(v)),
@@ -151,11 +168,14 @@ class TachoMotor(Device):
 
     # ------------------------------------------------------------ attributes
     def _reset(self) -> None:
-        self.shaft_deg = 0.0  # encoder count in the motor's own frame (float, exact)
-        self.offset = 0.0  # position = sign * shaft + offset
+        """The reset command (and a new motor): the settings back to the driver's defaults
+        (tacho_motor_class_reset), the motor stopped with coast, so that a turning one rolls out, and
+        position 0 where the shaft is now (legoev3_motor_reset: position_offset = -position)."""
+        self.count_offset = -self.shaft_deg  # the count (motor frame) = shaft_deg + count_offset
         self.polarity = "normal"
-        self.sign = 1  # -1 when the polarity is inversed
+        self.sign = 1  # -1 when the polarity is inversed: what position and the setpoints read
         self.stop_action = "coast"
+        # the setpoints as the driver stores them: in the motor's frame, negated as read and written
         self.speed_sp = 0
         self.position_sp = 0
         self.time_sp = 0
@@ -163,14 +183,13 @@ class TachoMotor(Device):
         self.ramp_up_sp = 0
         self.ramp_down_sp = 0
         self.pid = {"hold_pid/Kp": self.hold_kp, "hold_pid/Ki": 0, "hold_pid/Kd": 0, **SPEED_PID}
-        # stopped, run, to_pos, timed, direct, coast; or ramped (self.ramp_kind says which run)
-        self.mode = "stopped"
+        if self.mode not in ("stopped", "coast"):  # (__legoev3_motor_stop(ev3_tm, TM_STOP_ACTION_COAST))
+            self.coast_dps = self.speed_dps
+            self.mode = "coast"
         self.state_bits = 0
-        self.speed_dps = 0.0  # measured shaft speed, motor frame
         self.target_shaft = 0.0
-        self.target_position = 0  # run-to-*-pos: the target in counts, as the driver compares it
+        self.target_count = 0  # run-to-*-pos: the target in counts (motor frame), as the driver compares it
         self.run_left_s = 0.0
-        self.coast_dps = 0.0
         self.ramp_kind = ""  # while ramped: run, timed, to_pos or stop
         self.ramp_dps = 0.0  # while ramped: the ramp's speed now, motor frame
         self._lag_s = 0.0
@@ -178,8 +197,18 @@ class TachoMotor(Device):
         self._lag_duty = 0.0  # the duty cycle the speed PID drives a lagging shaft with, 0..100
 
     @property
+    def count(self) -> float:
+        """The encoder's count as the driver keeps it (motor frame, from the last reset or write)."""
+        return self.shaft_deg + self.count_offset
+
+    @property
+    def position_exact(self) -> float:
+        """What position reads, before it is rounded to whole counts."""
+        return self.sign * self.count
+
+    @property
     def position(self) -> int:
-        return int(round(self.sign * self.shaft_deg + self.offset))
+        return int(round(self.position_exact))
 
     @property
     def speed(self) -> int:
@@ -191,22 +220,29 @@ class TachoMotor(Device):
         if mode == "stopped" or mode == "coast":
             return 0
         if mode == "direct":
-            return self.duty_cycle_sp
+            return self.sign * self.duty_cycle_sp
         dps = self._drive_dps()
         duty = self._lag_duty or min(100 * abs(dps) / self.max_speed + self.load_pct, 100.0)
         return int(round(math.copysign(duty, dps * self.sign))) if dps else 0
 
     def _set_position(self, value: str) -> None:
-        self.offset = parse_int(value) - self.sign * self.shaft_deg
+        """legoev3_motor_set_position: the count from here on, accepted also while the motor runs (its
+        EBUSY test masks the state with TM_STATE_RUNNING, which is 0, so it never refuses); the written
+        position also becomes a run to a position's target, so update_position ends that run here."""
+        count = self.sign * parse_int(value)
+        self.count_offset = count - self.shaft_deg
+        if self.mode == "to_pos" or (self.mode == "ramped" and self.ramp_kind == "to_pos"):
+            self.target_count, self.target_shaft = count, self.shaft_deg
+            self._lag_s = 0.0
+            self._stop_now()
 
     def _set_polarity(self, value: str) -> None:
+        """polarity_store only sets the polarity: what position and the setpoints read changes sign."""
         value = value.strip()
         if value not in ("normal", "inversed"):
             raise invalid(value)
-        position = self.position
         self.polarity = value
         self.sign = -1 if value == "inversed" else 1
-        self.offset = position - self.sign * self.shaft_deg
 
     def _set_stop_action(self, value: str) -> None:
         value = value.strip()
@@ -215,13 +251,16 @@ class TachoMotor(Device):
         self.stop_action = value
 
     def _set_speed_sp(self, value: str) -> None:
-        self.speed_sp = parse_int(value, -self.max_speed, self.max_speed)
+        self.speed_sp = self.sign * parse_int(value, -self.max_speed, self.max_speed)
+
+    def _set_position_sp(self, value: str) -> None:
+        self.position_sp = self.sign * parse_int(value)  # (a C int's range)
 
     def _set_time_sp(self, value: str) -> None:
         self.time_sp = parse_int(value, 0)
 
     def _set_duty_cycle_sp(self, value: str) -> None:
-        self.duty_cycle_sp = parse_int(value, -100, 100)
+        self.duty_cycle_sp = self.sign * parse_int(value, -100, 100)
 
     @staticmethod
     def _ramp(value: str) -> int:
@@ -237,6 +276,10 @@ class TachoMotor(Device):
         command = value.strip()
         if command not in COMMANDS:
             raise invalid(value)
+        self._run_command(command)
+        self.last_command = command  # command_store: tm->params.command = i, once the command is sent
+
+    def _run_command(self, command: str) -> None:
         self._lag_s = 0.0
         self._error_sum = 0.0
         self._lag_duty = 0.0
@@ -248,14 +291,19 @@ class TachoMotor(Device):
         elif command == "run-direct":
             mode = "direct"
         elif command in ("run-to-abs-pos", "run-to-rel-pos"):
-            if command == "run-to-rel-pos" and self.position_sp == 0:
-                # tacho_motor_class.c tm_send_command: "If the relative position setpoint is 0,
-                # then don't try to run, just stop."
-                self._stop()
-                return
-            target = self.position_sp + (self.position if command == "run-to-rel-pos" else 0)
-            self.target_position = target
-            self.target_shaft = (target - self.offset) * self.sign
+            target = self.position_sp
+            if command == "run-to-rel-pos":
+                # tacho_motor_class.c tm_send_command: when the last command was run-to-rel-pos too
+                # (running or ended), the new target is its target + position_sp, "to eliminate
+                # cumulative error"; otherwise the count now + position_sp
+                start = self.rel_target if self.last_command == command else int(round(self.count))
+                target = self.rel_target = start + self.position_sp
+                if self.position_sp == 0:
+                    # "If the relative position setpoint is 0, then don't try to run, just stop."
+                    self._stop()
+                    return
+            self.target_count = target
+            self.target_shaft = target - self.count_offset
             mode = "to_pos"
         elif command == "stop":
             self._stop()
@@ -301,7 +349,7 @@ class TachoMotor(Device):
         if mode == "stopped":
             return 0.0
         if mode == "run":
-            return self.sign * self.speed_sp * dt
+            return self.speed_sp * dt
         if mode == "to_pos":
             remaining = self.target_shaft - self.shaft_deg
             step = abs(self.speed_sp) * dt
@@ -309,9 +357,9 @@ class TachoMotor(Device):
                 return remaining
             return math.copysign(step, remaining)
         if mode == "timed":
-            return self.sign * self.speed_sp * min(dt, self.run_left_s)
+            return self.speed_sp * min(dt, self.run_left_s)
         if mode == "direct":
-            return self.sign * self.duty_cycle_sp / 100.0 * self.max_speed * dt
+            return self.duty_cycle_sp / 100.0 * self.max_speed * dt
         if mode == "ramped":
             return self._ramp_plan(dt)[1]
         # coast: the shaft rolls out
@@ -333,7 +381,7 @@ class TachoMotor(Device):
             remaining = self.target_shaft - self.shaft_deg
             goal = math.copysign(abs(self.speed_sp), remaining)
         else:
-            goal = float(self.sign * self.speed_sp)
+            goal = float(self.speed_sp)
         leg = 0.0 if v0 * goal < 0 else goal
         ms = self.ramp_up_sp if abs(leg) > abs(v0) else self.ramp_down_sp
         need = abs(leg - v0) * ms / (1000.0 * self.max_speed)  # seconds to the leg's end
@@ -409,7 +457,7 @@ class TachoMotor(Device):
                 self.mode = mode  # at the run's speed: no more ramping work each tick
         if mode == "to_pos" and (
             abs(self.target_shaft - self.shaft_deg) < 1e-6
-            or (self.speed_sp == 0 and self.position == self.target_position)
+            or (self.speed_sp == 0 and round(self.count) == self.target_count)
         ):
             # the driver stops at once when the position reaches position_sp (update_position)
             self._lag_s = 0.0
@@ -462,7 +510,7 @@ class TachoMotor(Device):
             return self.ramp_dps
         if mode == "to_pos":
             return math.copysign(abs(self.speed_sp), self.target_shaft - self.shaft_deg)
-        return float(self.sign * self.speed_sp)
+        return float(self.speed_sp)
 
     def _push(self, error: float) -> int:
         """The speed PID on a lagging shaft: its error (counts/s) adds up each tick and the duty cycle

@@ -214,7 +214,7 @@ class Simulation:
             )
             for motor in robot.motors.values():
                 row += (
-                    motor.shaft_deg * motor.sign + motor.offset,
+                    motor.position_exact,
                     motor.speed_dps * motor.sign,
                     motor.state_bits,
                 )
