@@ -135,3 +135,23 @@ def test_motors_from_two_threads(run):
     """)
     assert result.status == "finished", result.reason
     assert result.trace.output[0].text == "720 360"
+
+
+def test_a_thread_pool_works_in_virtual_time(run):
+    """concurrent.futures' ThreadPoolExecutor, as on a brick (Python 3.5 has it): its module takes a lock's
+    _at_fork_reinit when imported, and its workers wait on a queue.SimpleQueue, which is C's and waits on
+    a real lock.  Both failed: an AttributeError on import, then a pool stopped as hung."""
+    result = run("""
+        import concurrent.futures, queue, time
+        def work(n):
+            time.sleep(0.1 * n)
+            return n * n
+        with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+            print(list(pool.map(work, [1, 2, 3])), round(time.monotonic() % 1000, 2))
+        q = queue.SimpleQueue()
+        q.put("x")
+        print(q.get(timeout=1), q.empty())
+    """)
+    assert result.status == "finished", result.reason
+    # two workers: 1 on the first (until 0.1 s), 2 on the second (until 0.2 s), then 3 on the first
+    assert [line.text for line in result.trace.output] == ["[1, 4, 9] 0.4", "x True"]

@@ -50,6 +50,7 @@ class VirtualThreads:
         self._saved = real
         self._saved_methods = (threading.Thread.start, threading.Thread.join, threading.Thread.is_alive)
         self._saved_queue_time = getattr(queue, "time", None)
+        self._saved_simple_queue = queue.SimpleQueue
 
         def factory(name: str, virtual: type) -> Callable:
             original = real[name]
@@ -85,6 +86,16 @@ class VirtualThreads:
         )
         if self._saved_queue_time is not None:
             queue.time = _time_module.monotonic  # the virtual clock, patched already by the environment
+        # queue.SimpleQueue is C's, waiting on a real lock (concurrent.futures' and multiprocessing.pool's
+        # ThreadPools wait on one): in a task, queue's own pure-Python one, on a virtual semaphore
+        simple_queue = self._saved_simple_queue
+        python_simple_queue = getattr(queue, "_PySimpleQueue", simple_queue)
+
+        def make_simple_queue(*args, **kwargs):
+            return (python_simple_queue if vt.in_task() else simple_queue)(*args, **kwargs)
+
+        make_simple_queue.__name__ = "SimpleQueue"
+        queue.SimpleQueue = make_simple_queue
 
     def uninstall(self) -> None:
         for name, original in self._saved.items():
@@ -92,6 +103,7 @@ class VirtualThreads:
         threading.Thread.start, threading.Thread.join, threading.Thread.is_alive = self._saved_methods
         if self._saved_queue_time is not None:
             queue.time = self._saved_queue_time
+        queue.SimpleQueue = self._saved_simple_queue
 
     # -------------------------------------------------------------- threads
     def as_main_thread(self, body: Callable[[], None]) -> Callable[[], None]:
@@ -190,6 +202,11 @@ class VLock:
     def _acquire_restore(self, state) -> None:
         self.acquire()
 
+    def _at_fork_reinit(self) -> None:
+        """(what os.register_at_fork is given by concurrent.futures and logging: unlocked, no waiter)"""
+        self._locked = False
+        self._waiters = []
+
 
 class VRLock(VLock):
     """threading.RLock in virtual time: the owning task may take it again."""
@@ -231,6 +248,10 @@ class VRLock(VLock):
     def _acquire_restore(self, state) -> None:
         self.acquire()
         self._owner, self._count = state
+
+    def _at_fork_reinit(self) -> None:
+        super()._at_fork_reinit()
+        self._owner, self._count = None, 0
 
 
 class VCondition:
