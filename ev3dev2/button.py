@@ -2,8 +2,16 @@
 The EV3 brick's buttons (python-ev3dev2 2.1.0).
 
 The simulator reports the pressed buttons through ``_link.call('buttons')``,
-which returns a list of names out of up, down, left, right, enter, backspace.
-Waiting polls every 10 ms (of virtual time inside a run).
+which returns a list of names out of up, down, left, right, enter, backspace
+(a read costs the brick about 1 ms, as on an EV3).
+
+The waits react to button *events*, as python-ev3dev2 2.1.0's do: there they read
+the buttons' input events (evdev's ``read_loop``) and look at the buttons at each
+one, so a button already down when a wait starts ends nothing, a new press does.
+Here the buttons are looked at every 10 ms (of virtual time inside a run), and a
+change since the last look is an event.  ``process()`` compares with its last
+call, as upstream's does (its first call compares with no button pressed).
+Unlike upstream's, a wait's ``timeout_ms`` ends it even when no button moves.
 """
 
 import array  # noqa: F401  (imported as upstream imports it, so a star import brings the same names)
@@ -12,7 +20,6 @@ import time
 from logging import getLogger
 
 from ev3dev2 import _link, get_current_platform, is_micropython, library_load_warning_message  # noqa: F401
-from ev3dev2._platform.ev3 import BUTTONS_FILENAME, EVDEV_DEVICE_NAME
 from ev3dev2.stopwatch import StopWatch
 
 try:
@@ -21,6 +28,13 @@ except ImportError:
     pass
 
 platform = get_current_platform()
+
+# the platform's button file names, as upstream imports them (the simulated brick is an EV3; 'fake' with
+# FAKE_SYS set, as python-ev3dev2's own tests run)
+if platform == "fake":
+    from ev3dev2._platform.fake import BUTTONS_FILENAME, EVDEV_DEVICE_NAME  # noqa: F401
+else:
+    from ev3dev2._platform.ev3 import BUTTONS_FILENAME, EVDEV_DEVICE_NAME  # noqa: F401
 
 log = getLogger(__name__)
 
@@ -198,14 +212,8 @@ class ButtonEVIO(ButtonBase):
         if isinstance(wait_for_button_release, str):
             wait_for_button_release = [wait_for_button_release]
 
+        before = set(self.buttons_pressed)  # a button down already is no event
         while True:
-            pressed = self.buttons_pressed
-            all_pressed = all(button in pressed for button in wait_for_button_press)
-            all_released = not any(button in pressed for button in wait_for_button_release)
-
-            if all_pressed and all_released:
-                return True
-
             if timeout_ms is not None and stopwatch.value_ms >= timeout_ms:
                 return False
 
@@ -213,6 +221,16 @@ class ButtonEVIO(ButtonBase):
                 _link.call("buttons", "wait")  # the simulator stops a wait that no scripted press can end
 
             time.sleep(_POLL_INTERVAL)
+            pressed = set(self.buttons_pressed)
+            if pressed == before:
+                continue
+            before = pressed  # an event: a button went down or up
+
+            all_pressed = all(button in pressed for button in wait_for_button_press)
+            all_released = not any(button in pressed for button in wait_for_button_release)
+
+            if all_pressed and all_released:
+                return True
 
 
 class Button(ButtonEVIO, EV3ButtonCommon):

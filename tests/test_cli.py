@@ -80,7 +80,7 @@ def test_a_crashing_program_exits_non_zero_with_its_traceback(tmp_path):
 
 def test_a_hung_program_is_stopped_with_a_reason(tmp_path):
     prog = tmp_path / "spin.py"
-    prog.write_text("while True:\n    pass\n")
+    prog.write_text("import _thread\nlock = _thread.allocate_lock()\nlock.acquire()\nlock.acquire()\n")
     summary = tmp_path / "s.json"
     result = cli("run", prog, "--hang-after", "0.5", "--summary", summary)
     assert result.returncode == 3

@@ -133,7 +133,11 @@ def test_an_exception_points_into_the_program_with_the_time(run):
 
 
 @pytest.mark.parametrize(
-    "loop", ["x = 0\nwhile True:\n    x += 1\n", "import time\nwhile True:\n    time.sleep(0)\n"]
+    "loop",
+    [
+        "import _thread\nlock = _thread.allocate_lock()\nlock.acquire()\nlock.acquire()\n",
+        "import os\nr, w = os.pipe()\nos.read(r, 1)\n",
+    ],
 )
 def test_a_program_that_spins_without_the_robot_or_clock_is_stopped(run, loop):
     result = run(loop, hang_after_s=0.5)

@@ -20,13 +20,26 @@ python-ev3dev2: Python on the brick's 300 MHz ARM plus the sysfs file access,
 about 2 ms for a read and 3 ms for a write (writes make the driver act).
 Measured on real bricks, a two-sensor RGB line follower with python-ev3dev2
 runs at about 30 loops a second (8 reads and 4 writes a loop: 28 ms here), and
-a loop of 4 writes and 2 reads took 30-40 ms with an older binding.
+a loop of 4 writes and 2 reads took 30-40 ms with an older binding.  What the
+shim does for an access is in that cost; the program's own lines cost their
+own time (cpu_time.py).
+
+As its clock passes tick T the brick waits, if it must, for the snapshot of the
+interval before (labelled T - tick, sent as the world passed T - 2 ticks: there
+already, unless the program ran two ticks ahead of the world without reading),
+so it runs at most two ticks ahead of the world even when it reads nothing, and
+hears the simulator's stop (its time limit, a hang, Ctrl-C) at the same point
+of the program in every run: where the program was is the same each time.
+While the program's thread is stuck outside the simulation (a real lock, a
+pipe), another thread may look (`stop_waiting`), so that the brick can still
+say where it was.
 """
 
 from __future__ import annotations
 
 import errno
 import time
+from _thread import allocate_lock
 from threading import get_ident
 
 from ..protocol import ProtocolError
@@ -35,6 +48,9 @@ from .scheduler import RunOver, Scheduler
 READ_US = 2_000  # reading one attribute (a sensor value, a motor's position or state)
 WRITE_US = 3_000  # writing one attribute (a speed, a command, a mode)
 FIND_US = 2_000  # looking a device up when it is constructed
+# Reading the brick's buttons: python-ev3dev2 2.1.0's Button.buttons_pressed is one ioctl, then a loop over
+# the six buttons (about 24 lines, 0.65 ms at cpu_time.LINE_US): about 1 ms.
+BUTTONS_US = 1_000
 
 HEARTBEAT_S = 0.5  # real seconds between two messages at most, while the clock moves
 _perf_counter = time.perf_counter  # the real clock (the program's is virtual)
@@ -108,10 +124,13 @@ class BrickLink:
         self.label = 0  # the interval the values serve (its first tick)
         self.declared = 0  # the last tick marker sent: the brick's clock is in [declared, declared + tick)
         self.ahead: tuple[int, list] | None = None  # a snapshot that arrived for a later interval
+        self.heard_us = 0  # the label of the latest snapshot that arrived
         self.stale: set[int] = set()  # devices written since the moment of the values
         self.written: set[int] = set()  # devices written since the last tick marker
         self.ops: list = []
         self.stopped: str | None = None  # why the simulator ended the run
+        self._reading = allocate_lock()  # held by whichever thread reads the connection
+        self.early: list = []  # messages another thread read (stop_waiting), for the program's thread
         self.last_sent = _perf_counter()
         self.last_sent_us = 0  # the brick's clock when it last sent something
         scheduler.on_progress = self.progress
@@ -169,6 +188,8 @@ class BrickLink:
             self.label, self.values = self.ahead
             self.ahead = None
         self.flush()
+        while self.heard_us < tick_us - self.tick_us:  # (see the module's docstring)
+            self._next_message()
 
     def output(self, t_us: int, stream: str, text: str) -> None:
         """A printed line, sent at once (so it is not lost if the program hangs afterwards)."""
@@ -188,23 +209,53 @@ class BrickLink:
         raise RunStopped()
 
     def _next_message(self) -> list:
-        try:
-            message = self.channel.receive()
-        except ProtocolError as err:
-            self._gone(str(err))
+        if self.early:
+            message = self.early.pop(0)
+        else:
+            with self._reading:
+                try:
+                    message = self.channel.receive()
+                except ProtocolError as err:
+                    self._gone(str(err))
+        self._take(message)
+        return message
+
+    def _take(self, message: list) -> None:
+        """A snapshot kept for its interval; the simulator's stop ends the run (RunStopped)."""
         kind = message[0]
         if kind == "snap":
             label = message[1]
+            self.heard_us = max(self.heard_us, label)
             if label == self.declared:
                 if self.label != label:
                     self.label, self.values = label, message[2]
             elif label > self.declared:
                 self.ahead = (label, message[2])
         elif kind == "stop":
-            self._gone(str(message[1]) if len(message) > 1 else "stopped")
+            self._gone(_why_stopped(message))
         elif kind != "reply":
             self._gone(f"unexpected message {kind!r} from the simulator")
-        return message
+
+    def stop_waiting(self) -> str | None:
+        """(From a thread other than the program's, while the program's clock stands still and it reads
+        nothing from the simulator.)  Why the simulator stopped the run, if it has; None if it has not,
+        or if the program's thread is reading.  The messages read wait, in order, for the program's
+        thread (self.early)."""
+        if not self._reading.acquire(False):
+            return None
+        try:
+            while True:
+                try:
+                    message = self.channel.pending()
+                except ProtocolError as err:
+                    return str(err)
+                if message is None:
+                    return None
+                self.early.append(message)
+                if message[0] == "stop":
+                    return _why_stopped(message)
+        finally:
+            self._reading.release()
 
     def ask(self, ops: list) -> list:
         """Send the queued ops and these, which want answers; wait for the answers (and every value now)."""
@@ -310,7 +361,10 @@ class BrickLink:
                 self._call(False, "display", [bytes(pixels).hex()])
             return None
         if feature == "buttons":
-            return self._call(True, "buttons", list(args[:1]))
+            answer = self._call(True, "buttons", list(args[:1]))
+            if not args:  # (["wait"] asks the simulator whether a press is to come: no EV3 does that)
+                self.scheduler.spend(BUTTONS_US)
+            return answer
         raise ValueError(f"the simulated brick has no feature {feature!r}")
 
     def _call(self, answered: bool, feature: str, args: list):
@@ -324,3 +378,7 @@ class BrickLink:
             kind, message = answer["error"]
             raise (NoButtonPress if kind == "NoButtonPress" else RuntimeError)(message)
         return answer
+
+
+def _why_stopped(message: list) -> str:
+    return str(message[1]) if len(message) > 1 else "stopped"

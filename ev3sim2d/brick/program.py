@@ -135,8 +135,13 @@ def error_report(exc: BaseException, program_path: str, t_s: float) -> dict:
     }
 
 
+MAX_THREADS_SAID = 64  # threads whose place an end message says, at most
+
+
 def ending(tasks: list, program_path: str, scheduler) -> dict:
-    """The end message's content: how the run ended, from the brick's side."""
+    """The end message's content: how the run ended, from the brick's side; for a run that did not end by
+    itself (stopped by the simulator, a deadlock), `threads`: where each of the program's threads was,
+    [thread name, file, line] (scheduler.positions)."""
     t = scheduler.now_s
     error = None
     for task in tasks:
@@ -157,4 +162,7 @@ def ending(tasks: list, program_path: str, scheduler) -> dict:
         status = "stopped"
     else:
         status = "finished"
-    return {"t_us": scheduler.now_us, "status": status, "error": error}
+    how = {"t_us": scheduler.now_us, "status": status, "error": error}
+    if scheduler.where and status in ("deadlock", "time_limit", "stopped"):
+        how["threads"] = scheduler.where[:MAX_THREADS_SAID]
+    return how

@@ -5,7 +5,12 @@ its clock passes a tick it tells the simulator (link.tick), which steps the
 world in lockstep.  The run ends when every main task has ended, on a deadlock,
 or when the simulator stops it (at its time limit, which the brick is not told:
 nothing in here says which world or variant this is); the `end` message says
-which, and carries the program's error if it had one.
+which, and carries the program's error if it had one, or, for a run stopped,
+where each of the program's threads was.  The program's own lines cost time as
+they run (cpu_time.py).  While the program runs, this process's main
+thread looks now and then whether its clock stands still outside the
+simulation (a real lock, a pipe): if the simulator stops it then, the main
+thread answers for it.
 """
 
 from __future__ import annotations
@@ -18,12 +23,16 @@ import sys
 import time
 
 from ..protocol import ProtocolError
+from .cpu_time import CpuTime
 from .environment import BrickEnvironment, _real_start_new_thread
 from .link import BrickLink
 from .program import Program, ending, error_report
 from .scheduler import Scheduler
 
 _monotonic = time.monotonic  # the real clock (the program's is virtual)
+PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))  # ev3sim2d
+SHIMS = ("ev3dev2", "pybricks")
+WATCH_S = 0.25  # real seconds between two looks of the main thread at a program whose clock stands still
 
 SHIM_MODULES = (
     "ev3dev2",
@@ -91,14 +100,66 @@ class BrickRun:
             report["file"] = report["file"] or self.program_path  # (a source too deep has no line)
             self._end({"t_us": 0, "status": "error", "error": report})
             return
+        self._count_lines(program)
         task = s.spawn("robot", None, self.env.main_body(program.run), _real_start_new_thread, main=True)
         s.start()
-        s.settled.wait()
+        if not self._watch():
+            return
         self.env.finish()
         how = ending([task], self.program_path, s)
         if self.link.stopped:
             how["status"] = "stopped"
         self._end(how)
+
+    def _count_lines(self, program: Program) -> None:
+        """From now on the program's lines cost time: its file compiled again to count them, and its modules
+        imported so.  (A source that compiles but is too deep to count runs uncounted.)"""
+        cpu = self._cpu_time()
+        cpu.install()
+        try:
+            with open(self.program_path, "rb") as f:
+                program.code = cpu.compile(f.read(), self.program_path)
+        except (OSError, SyntaxError, ValueError, RecursionError, MemoryError):
+            pass
+
+    def _cpu_time(self) -> CpuTime:
+        """The program's own code: its files, not the brick's, the shims', Python's nor third parties' (even
+        in the program's folder)."""
+        shim_root = self.config.get("shim_root") or os.path.dirname(PACKAGE_DIR)
+        outside = [
+            PACKAGE_DIR,
+            os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+            *(os.path.join(shim_root, name) for name in SHIMS),
+            os.path.dirname(os.__file__),  # the standard library
+            *self.config.get("site_packages", ()),
+        ]
+        return CpuTime(self.scheduler, self.config.get("program_dirs", []), outside)
+
+    def _watch(self) -> bool:
+        """Wait for the end of the run; True once it has ended.  False if this thread answered the simulator's
+        stop for the program, saying where its threads were: when the program is stuck outside the
+        simulation (its clock still, reading nothing from the simulator), or has not ended within WATCH_S
+        of the stop (it catches the exception that ends it, or is stuck in a long call)."""
+        s, link = self.scheduler, self.link
+        clock, looks_since_stop = s.now_us, 0
+        while not s.settled.wait(WATCH_S):
+            if link.stopped is not None:
+                looks_since_stop += 1
+                if looks_since_stop < 2:
+                    continue
+            elif s.now_us != clock:
+                clock = s.now_us
+                continue
+            else:
+                why = link.stop_waiting()
+                if why is None:
+                    continue
+                link.stopped = why
+                s.stop("stopped")
+            self.env.finish()
+            self._end({**ending(s.tasks[:1], self.program_path, s), "status": "stopped"})
+            return False
+        return True
 
     def _end(self, how: dict) -> None:
         try:

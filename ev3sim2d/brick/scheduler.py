@@ -19,14 +19,31 @@ inline, which keeps the common case fast.  In a brick process, `on_tick` only
 tells the simulator that the clock passed a tick (`batch_ticks`: once for the
 last of several ticks passed at once, as a long sleep does); the world steps in
 the simulator process.
+
+Computing costs time too, as on the EV3's 300 MHz ARM (cpu_time.py): each line of
+the program's own code a task runs costs it LINE_US, counted in slices of
+SWITCH_US, the time Python's interpreter lock lets one thread compute while
+another waits for it (`charge`).  A slice moves the clock for every task (one
+processor); a task due meanwhile gets the turn at its end.  So a loop that never
+touches a device or the clock still moves the clock, threads that compute
+share it, and a few lines between two sleeps cost nothing that shows (what is
+short of a slice is carried over: the same program spends the same slices in
+every run).  A run that ends other than by finishing remembers where each task
+of the program was (`where`).
 """
 
 from __future__ import annotations
 
 import heapq
+import sys
 import threading
 from _thread import allocate_lock
 from collections.abc import Callable
+
+# The slice in which computing is charged: CPython hands its interpreter lock to a waiting thread every
+# 5 ms (sys.getswitchinterval(), 0.005 s since Python 3.2, the EV3's 3.5 too).
+SWITCH_US = 5_000
+_current_frames = sys._current_frames  # (taken before any program runs: a program may replace sys's)
 
 
 class RunOver(BaseException):
@@ -48,6 +65,7 @@ class Task:
         "woken",
         "joiners",
         "released",
+        "cpu_us",
     )
 
     def __init__(self, name: str, owner: object, main: bool) -> None:
@@ -63,6 +81,12 @@ class Task:
         self.woken = False
         self.joiners: list[Task] = []  # tasks blocked until this one ends
         self.released = False  # let go for good at the end of the run
+        self.cpu_us = 0  # the time it computed that is not yet charged (less than a slice)
+
+    @property
+    def thread_name(self) -> str:
+        """The thread's name as the program knows it: MainThread, Thread-1 (worker), ..."""
+        return self.name.split("-", 1)[1] if "-" in self.name else "MainThread"
 
     def __repr__(self) -> str:
         return f"Task({self.name!r})"
@@ -95,6 +119,8 @@ class Scheduler:
         self.over = False
         self.end_reason: str | None = None
         self.settled = threading.Event()  # set once the run is over and every main task has ended
+        self.program_file: Callable[[str], bool] = lambda filename: False  # the program's own code?
+        self.where: list[list] | None = None  # [thread, file, line] of each task, when the run ended
 
     # ----------------------------------------------------------------- clock
     @property
@@ -122,10 +148,25 @@ class Scheduler:
         self.now_us = target_us
 
     def end(self, reason: str) -> None:
-        """End the run; tasks that run again get RunOver."""
+        """End the run; tasks that run again get RunOver.  Unless it finished, say where the tasks were."""
         if not self.over:
             self.over = True
             self.end_reason = reason
+            if reason != "finished":
+                self.where = self.positions()
+
+    def positions(self) -> list[list]:
+        """[thread name, file, line] of each live task: the innermost frame of the program's own code in
+        its thread (a task in the brick's or the shim's code is where it called them)."""
+        frames = _current_frames()
+        found = []
+        for task in self.tasks:
+            frame = None if task.done or task.thread_id is None else frames.get(task.thread_id)
+            while frame is not None and not self.program_file(frame.f_code.co_filename):
+                frame = frame.f_back
+            if frame is not None:
+                found.append([task.thread_name, frame.f_code.co_filename, frame.f_lineno])
+        return found
 
     # ----------------------------------------------------------------- tasks
     def task_for_thread(self, thread_id: int | None = None) -> Task | None:
@@ -186,6 +227,23 @@ class Scheduler:
         me = self.current
         self._queue(me, target)
         self._hand_on(me)
+
+    def charge(self, task: Task) -> None:
+        """The current task, in its thread, has computed for SWITCH_US or more (task.cpu_us): each whole
+        SWITCH_US of it moves the clock, after which a task that is due takes the turn, as one waiting for
+        the interpreter's lock gets it at the end of the slice."""
+        if self.over:
+            raise RunOver()
+        slices = task.cpu_us // SWITCH_US
+        task.cpu_us -= slices * SWITCH_US
+        target = self.now_us + slices * SWITCH_US
+        if target < self.next_tick_us and (self.limit_us is None or target <= self.limit_us):
+            self.now_us = target
+        else:
+            self._advance_to(target)
+        if self._ready and self._ready[0][0] <= self.now_us:
+            self._queue(task, self.now_us)
+            self._hand_on(task)
 
     def wait(self, predicate: Callable[[], bool], timeout_us: int | None) -> bool:
         """Spend time tick by tick until predicate() is true or timeout_us passes."""

@@ -111,8 +111,29 @@ def sound_played(kind: str, details: dict) -> tuple[int, float]:
     return 0, 0.0
 
 
+THREADS_SAID = 64  # threads whose place a brick may say, at most
+
+
+def said_threads(how) -> list | None:
+    """The `threads` of a brick's end message, checked: [thread name, file, line] each, a few at most."""
+    threads = how.get("threads") if type(how) is dict else None
+    if type(threads) is not list:
+        return None
+    kept = [
+        [item[0][:100], item[1][:1000], item[2]]
+        for item in threads[:THREADS_SAID]
+        if type(item) is list
+        and len(item) == 3
+        and type(item[0]) is str
+        and type(item[1]) is str
+        and type(item[2]) is int
+    ]
+    return kept or None
+
+
 def clean_end(how: dict) -> dict:
-    """What is kept of a brick's end message: its time, status and error, the texts cut short."""
+    """What is kept of a brick's end message: its time, status and error, the texts cut short, and where
+    its program's threads were (said_threads), for a run that did not end by itself."""
     status = how.get("status")
     error = how.get("error")
     kept: dict = {"t_us": how.get("t_us"), "status": status[:50] if type(status) is str else None}
@@ -128,6 +149,9 @@ def clean_end(how: dict) -> dict:
         kept["error"] = report
     else:
         kept["error"] = None
+    threads = said_threads(how)
+    if threads:
+        kept["threads"] = threads
     return kept
 
 

@@ -353,8 +353,29 @@ LIMIT_WHAT = {
 }
 
 
-def _robot_end(port: BrickPort, error: dict | None, brick: BrickProcess | None, t: float) -> dict:
-    """How one robot's brick ended: status, reason (as for a whole run), and the limit it ran into.
+def where_text(threads: list | None, shown: str, real: str) -> str:
+    """Where a stopped program's threads were, as its brick said (Session.where), the file named as the user
+    named it: ' (it was at prog.py, line 7)', or one place per thread; '' when the brick said nothing."""
+    if not threads:
+        return ""
+    real_dir = os.path.join(os.path.dirname(real), "")
+    shown_dir = os.path.join(os.path.dirname(shown), "") if os.path.dirname(shown) else ""
+
+    def place(file: str, line: int) -> str:
+        return f"{file.replace(real, shown).replace(real_dir, shown_dir)}, line {line}"
+
+    if len(threads) == 1:
+        return f" (it was at {place(threads[0][1], threads[0][2])})"
+    return (
+        " (its threads were: " + "; ".join(f"{name} at {place(f, line)}" for name, f, line in threads) + ")"
+    )
+
+
+def _robot_end(
+    port: BrickPort, error: dict | None, brick: BrickProcess | None, t: float, where: str = ""
+) -> dict:
+    """How one robot's brick ended: status, reason (as for a whole run), and the limit it ran into; where:
+    where_text of its threads, for a run stopped at the time limit or as hung.
 
     `early` marks an end that decides the whole run's status before any program's error (a hang, an
     interruption, a crash)."""
@@ -362,8 +383,8 @@ def _robot_end(port: BrickPort, error: dict | None, brick: BrickProcess | None, 
     if port.gone == "hung":
         what = "the program ran" if brick is not None else "the program on the other computer ran"
         reason = (
-            f"stopped: {what} for a while without using the robot or the clock "
-            f"(a loop with no sensor read, motor command or sleep?) at {t:.2f} s"
+            f"stopped: {what} for a while without using the robot or the clock (waiting on something "
+            f"outside the simulation, or inside one long call of compiled code?) at {t:.2f} s{where}"
         )
         return {"status": "hung", "reason": reason, "limit": None, "early": True}
     if port.gone == "interrupted":
@@ -378,12 +399,14 @@ def _robot_end(port: BrickPort, error: dict | None, brick: BrickProcess | None, 
         limit = "memory" if error["type"] == "MemoryError" else None
         return {"status": "error", "reason": reason, "limit": limit, "early": False}
     if end.get("status") == "deadlock":
-        reason = f"stopped: every thread of the program is waiting for another (a deadlock) at {t:.2f} s"
+        reason = (
+            f"stopped: every thread of the program is waiting for another (a deadlock) at {t:.2f} s{where}"
+        )
         return {"status": "hung", "reason": reason, "limit": None, "early": False}
     if end.get("status") == "time_limit":
         return {
             "status": "time_limit",
-            "reason": f"ran until the time limit of {t:.2f} s",
+            "reason": f"ran until the time limit of {t:.2f} s{where}",
             "limit": None,
             "early": False,
         }
@@ -410,7 +433,11 @@ def run_result(
             if len(shown) > 1:
                 error["robot"] = port.robot.name
         robot_t = t if port.gone or port.end is None else min(t, port.time_us / 1e6)
-        ends.append((_robot_end(port, found, brick, robot_t), _robot_end(port, found, brick, t)))
+        threads = session.where.get(port.index) if session is not None else None
+        where = where_text(threads or (port.end or {}).get("threads"), name, real)
+        ends.append(
+            (_robot_end(port, found, brick, robot_t, where), _robot_end(port, found, brick, t, where))
+        )
     # the run: the first hang, interruption or crash; else the first error; a deadlock; the time limit
     order = [e for _, e in ends if e["early"]] or [e for _, e in ends if e["status"] == "error"]
     order = order or [e for _, e in ends if e["status"] == "hung"]

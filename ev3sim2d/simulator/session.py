@@ -8,14 +8,19 @@ touch only its own robot's devices, so the bricks' ops between two ticks can
 be applied brick by brick: the run depends only on what the programs do, never
 on which process was faster.  The simulator never waits for a brick that is
 ahead; a brick that is behind and whose clock does not move for `hang_after_s`
-of real time that the simulator spent waiting for it or applying its ops (a
-program spinning without using the robot or the clock, or one that sends
-heartbeats, lines or calls that do not move its clock) is stopped as hung; the
-time a brick waits for the world, or for the simulator busy with other bricks,
-is never held against it.  What a brick sends is applied in one place
-(`_apply`), where whatever goes wrong ends that brick only: a breach of the
-protocol, a budget (results/trace.py), or the simulator's own failure on its
-ops, which is reported loudly.  A robot whose
+of real time that the simulator spent waiting for it or applying its ops is
+stopped as hung: a program waiting on something outside the simulation (a
+real lock, a pipe), computing inside one long call of compiled code, or one
+that sends heartbeats, lines or calls that do not move its clock.  (A program
+that computes in Python, even in a loop that never uses the robot or the
+clock, moves its clock: its lines cost time on the brick, so it runs on to
+the time limit.)  The time a brick waits for the world, or for the simulator
+busy with other bricks, is never held against it.  A brick stopped at the time
+limit or as hung answers the stop with its end message, which says where each
+thread of its program was: the session waits a little for it (`where`).  What
+a brick sends is applied in one place (`_apply`), where whatever goes wrong
+ends that brick only: a breach of the protocol, a budget (results/trace.py), or
+the simulator's own failure on its ops, which is reported loudly.  A robot whose
 program ended (or whose brick was dropped) while others run on is let go, as an
 EV3's brickman does when a program ends: its motors are reset (Simulation.let_go).
 """
@@ -30,11 +35,12 @@ from collections.abc import Callable
 
 from ..protocol import ConnectionGone, ProtocolError, wait_for_any
 from ..protocol.stream import cores_idle
-from .brick_port import BrickPort, OverBudget
+from .brick_port import BrickPort, OverBudget, said_threads
 from .simulation import Simulation
 
 _perf_counter = time.perf_counter
 SPIN_S = 0.002
+LAST_WORDS_S = 1.0  # real seconds to wait, at most, for the bricks stopped to say where their programs were
 
 
 def _why(err: Exception) -> str:
@@ -73,6 +79,8 @@ class Session:
         self.stop_us: int | None = None  # a stepped run's stop (advance): the world goes no further
         self.started = False
         self._let_go: set[int] = set()  # robots let go when their programs ended (Simulation.let_go)
+        self._stopped: list[BrickPort] = []  # bricks stopped at the time limit or as hung, to hear from
+        self.where: dict[int, list] = {}  # robot index -> [thread, file, line] of its program's threads
         for port in ports:
             port.time_limit_us = limit_us
 
@@ -118,7 +126,32 @@ class Session:
         """End a brick's part in the run (it broke the protocol or a budget, went away, or hung)."""
         if not port.finished:
             port.gone = why
+        if why in ("hung", "time limit") and port not in self._stopped:
+            self._stopped.append(port)
         port.send(["stop", why])
+
+    def _hear_where(self) -> None:
+        """The bricks stopped at the time limit or as hung answer the stop with their end message, which
+        says where each of the program's threads was (docs/protocol.md): wait for it, LAST_WORDS_S at
+        most in all.  What else they send now is not applied: their run is over."""
+        waiting = [port for port in self._stopped if not port.broken]
+        self._stopped = []
+        deadline = _perf_counter() + LAST_WORDS_S
+        while waiting:
+            left = deadline - _perf_counter()
+            if left <= 0:
+                return
+            for port in list(waiting):
+                try:
+                    message = port.channel.receive(timeout_s=min(left, 0.05) / len(waiting))
+                except ProtocolError:
+                    waiting.remove(port)
+                    continue
+                if message is not None and message[0] == "end" and len(message) == 2:
+                    waiting.remove(port)
+                    threads = said_threads(message[1])
+                    if threads:
+                        self.where[port.index] = threads
 
     def _apply(self, port: BrickPort, work: Callable[[], object]):
         """Do `work` on this brick's behalf (take its messages, apply its ops, take its snapshot): the one
@@ -192,7 +225,10 @@ class Session:
             port.stalled_s = 0.0
 
     def finish(self) -> None:
-        """The world to the moment the last brick ended (or the time limit), and every printed line shown."""
+        """The world to the moment the last brick ended (or the time limit), and every printed line shown;
+        where the programs stopped were."""
+        if not self.interrupted:
+            self._hear_where()
         end_us = max((p.time_us for p in self.ports), default=0)
         if self.limit_us is not None:
             end_us = min(end_us, self.limit_us)

@@ -21,6 +21,8 @@ from tests.grading.lesson_maker import write_lesson, write_program
 ROOT = Path(__file__).resolve().parents[2]
 
 READINGS = """\
+import builtins
+builtins.__ev3sim2d_line__ = True.__bool__  # (its own lines would move the clocks between the readings)
 import asyncio
 import datetime
 import importlib

@@ -46,7 +46,7 @@ def test_wait_times_out(brick):
     start = brick.clock
     assert Button().wait_for_pressed(["up", "down"], timeout_ms=200) is False
     assert brick.clock - start == pytest.approx(0.2, abs=0.011)
-    assert Button().wait_for_released("up", timeout_ms=200) is True
+    assert Button().wait_for_released("up", timeout_ms=200) is False  # no button event within 200 ms
 
 
 def test_process_calls_the_handlers_of_changed_buttons(brick):

@@ -288,7 +288,7 @@ def test_a_program_that_never_yields_is_stopped_as_hung_without_msg_dontwait(oth
     """Windows has no MSG_DONTWAIT: the simulator must still notice a brick that spins without a word
     (it used to block reading it, and `while True: pass` hung for ever)."""
     program = tmp_path / "spin.py"
-    program.write_text("while True:\n    pass\n")
+    program.write_text("import _thread\nlock = _thread.allocate_lock()\nlock.acquire()\nlock.acquire()\n")
     done = ev3sim2d(other_systems["windows"], "run", program, "--time", 30, "--hang-after", 1, timeout=60)
     assert done.returncode == 3, done.stderr  # hung
     assert "stopped" in done.stderr and "without using the robot or the clock" in done.stderr
@@ -312,7 +312,7 @@ def test_the_brick_ends_with_its_simulator_where_there_is_no_pdeathsig(other_sys
         deadline = time.monotonic() + 60
         while not pid_files and time.monotonic() < deadline:
             time.sleep(0.1)
-            pid_files = list((tmp_path / "scratch").glob("ev3sim2d-brick-*/pid"))
+            pid_files = list((tmp_path / "scratch").glob("ev3sim2d-brick-*/*/pid"))  # (its working folder)
         assert pid_files, "the brick never started"
         time.sleep(0.2)
         brick = int(pid_files[0].read_text())
