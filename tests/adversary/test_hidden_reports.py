@@ -85,12 +85,14 @@ SAME_OUTCOME = {
     "prints": "import sys\nfor i in range(int(d) * 3):\n    print('the wall is', d, 'cm away')\n"
     "print(d, file=sys.stderr)\nraise RuntimeError('done')",
     "virtual_time": "import time\ntime.sleep(d / 50)\nraise RuntimeError('late')",
-    "real_time": "for i in range(int(d) * 40000):\n    pass\nraise RuntimeError('slow')",
+    # (compiled code: real time that depends on the distance, and no virtual time, unlike lines of Python)
+    "real_time": "sum(range(int(d) * 400000))\nraise RuntimeError('slow')",
     "signal": "import os, signal\nos.kill(os.getpid(), [signal.SIGSEGV, signal.SIGABRT, signal.SIGBUS, signal.SIGILL,"
     " signal.SIGFPE][bucket])",
     "memory": "blocks = []\nwhile True:\n    blocks.append(bytearray(int(d) * 100_000))",
-    "stuck": "import threading\nif d < 60:\n    lock = threading.Lock()\n    lock.acquire()\n    lock.acquire()\n"
-    "else:\n    while True:\n        pass",
+    # a deadlock between the program's own threads, or a real lock that leaves its clock standing still
+    "stuck": "import threading, _thread\nlock = threading.Lock() if d < 60 else _thread.allocate_lock()\n"
+    "lock.acquire()\nlock.acquire()",
 }
 # each chooses its status, or which checks pass, by the distance: allowed to differ, in fixed words only
 CHOSEN_OUTCOME = {

@@ -17,7 +17,14 @@ from tests import linux_features
 from .lesson_maker import GOOD, SHORT, write_lesson, write_program
 
 MISBEHAVING = {
-    "loops_for_ever.py": ("timeout", "got stuck", "while True:\n    pass\n"),
+    # stuck outside the simulation (a real lock): its clock stands still, and it is stopped as hung
+    "gets_stuck.py": (
+        "timeout",
+        "got stuck",
+        "import _thread\nlock = _thread.allocate_lock()\nlock.acquire()\nlock.acquire()\n",
+    ),
+    # computing in Python moves its clock (27 us a line, as on an EV3): it runs to the lesson's time limit
+    "loops_for_ever.py": ("graded", "ran until the time limit of 5.0 s", "while True:\n    pass\n"),
     "memory_blow_up.py": (
         "memory",
         "ran out of memory",
@@ -94,7 +101,9 @@ def test_a_cpu_hog_is_stopped_by_the_cpu_limit(tmp_path):
     lesson = load_lesson(
         write_lesson(tmp_path / "lesson", extra="limits: {wall_s: 30, cpu_s: 1, hang_s: 20}")
     )
-    hog = write_program(tmp_path, "hog.py", "while True:\n    pass\n")
+    # (one long call of compiled code: its clock stands still while it burns real CPU time; a loop in
+    # Python would move its clock, and end at the time limit)
+    hog = write_program(tmp_path, "hog.py", "sum(range(10**15))\n")
     result = grade(lesson, find_submissions([hog]), jobs=2).results[0]
     assert result.status == "timeout"
     assert "CPU time" in result.variants[0].message
