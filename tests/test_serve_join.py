@@ -205,7 +205,11 @@ def test_a_served_run_is_the_run_of_one_command_fingerprint_for_fingerprint(serv
     assert "alice" in served.log() and "bob" in served.log()
 
 
-def test_a_join_that_disconnects_mid_run_is_dropped_and_the_others_run_on(serve, tmp_path):
+def test_a_join_that_disconnects_mid_run_is_dropped_and_the_others_run_on(serve, tmp_path, monkeypatch):
+    (tmp_path / "tmp").mkdir()
+    monkeypatch.setenv(
+        "TMPDIR", str(tmp_path / "tmp")
+    )  # (the join killed outright leaves its brick's folder)
     talker = _program(tmp_path, "talker.py", TALKER.format(seconds=10**6))  # never ends by itself
     ender = _program(tmp_path, "ender.py", TALKER.format(seconds=20))
     # (programs that mostly sleep run thousands of times faster than real time: the limit is far away)

@@ -108,8 +108,15 @@ def _grader(tmp_path: Path, signal_name: str | None = None):
         [sys.executable, "-m", "ev3sim2d", "grade", str(lesson), str(folder), "--jobs", "2",
          "--json", str(tmp_path / "r.json"), "--junit", str(tmp_path / "r.xml")],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=ROOT,
-        env={**os.environ, "EV3SIM2D_STATE_DIR": str(tmp_path / "state")},
+        env={**os.environ, "EV3SIM2D_STATE_DIR": str(tmp_path / "state"), "TMPDIR": str(_temporary(tmp_path))},
     )  # fmt: skip
+
+
+def _temporary(tmp_path: Path) -> Path:
+    """The grader's temporary folder (its job folders, its bricks' scratch folders): the test's own."""
+    folder = tmp_path / "tmp"
+    folder.mkdir(exist_ok=True)
+    return folder
 
 
 @needs_proc
@@ -132,6 +139,7 @@ def test_a_signal_ends_every_process_the_grader_started_and_keeps_what_was_done(
     assert 'name="' in (tmp_path / "r.xml").read_text()  # the JUnit report of what was done
     time.sleep(0.5)
     assert [pid for pid in started if _alive(pid)] == []
+    assert list(_temporary(tmp_path).iterdir()) == [], "the grader left its job folders behind"
 
 
 @needs_proc
