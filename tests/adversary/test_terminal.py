@@ -185,3 +185,23 @@ def test_grade_shows_a_programs_error_and_name_escaped(tmp_path):
     out, err = assert_safe(done.stdout, "stdout"), assert_safe(done.stderr, "stderr")
     assert "mallory\\x1b]0;title\\x07\\u202e.py" in out and "mallory\\x1b]0;title\\x07\\u202e.py" in err
     assert "ValueError: \\x1b]0;error title\\x07\\u202e\\rmessage" in out  # the visible variant's error
+
+
+def test_where_a_stopped_programs_threads_were_is_shown_escaped(tmp_path):
+    """A program still running at the time limit is told where each thread was, by its name: a name the
+    program chose, so it reaches the terminal with its control characters escaped, as printed lines do."""
+    program = tmp_path / "named.py"
+    program.write_text(
+        "import threading, time\n"
+        "def wait():\n"
+        "    time.sleep(10**6)\n"
+        "threading.Thread(target=wait, name='\\x1b]0;thread title\\x07\\x1b[2J', daemon=True).start()\n"
+        "while True:\n"
+        "    time.sleep(1)\n"
+    )
+    done = subprocess.run(
+        _command("run", program, "--time", "2"), capture_output=True, cwd=tmp_path, env=_env(), timeout=300
+    )
+    err = assert_safe(done.stderr, "stderr")
+    assert done.returncode == 0, err
+    assert f"\\x1b]0;thread title\\x07\\x1b[2J at {program}, line 3" in err, err
