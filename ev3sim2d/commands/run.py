@@ -19,6 +19,7 @@ from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 from .plot import add_value_arguments, matplotlib_missing, value_names, write_plot
+from .problem_lines import problem_lines
 
 NAME = "run"
 HELP = "run a program (or several, one robot each) in a world"
@@ -171,11 +172,16 @@ def report_end(args, result: RunResult, programs: list[str]) -> int:
     chose (its error's text, its traceback, the reason that quotes them) reaches the terminal escaped."""
     unstartable = start_failure(result)
     if unstartable is not None:  # its brick could not compile it: said as Python says it, with the line
-        return fail(printable(unstartable), EXIT_PROGRAM_ERROR)
+        code = fail(printable(unstartable), EXIT_PROGRAM_ERROR)
+        for line in problem_lines(result):
+            print(line, file=sys.stderr)
+        return code
     if result.error:
         print(printable(result.error["traceback"].rstrip()), file=sys.stderr)
         if result.error.get("hint"):
             print(f"hint: {printable(result.error['hint'])}", file=sys.stderr)
+    for line in problem_lines(result):  # (an editor's problem matcher reads these: problem_lines.py)
+        print(line, file=sys.stderr)
     try:
         write_outputs(args, result, programs)
     except OSError as err:

@@ -353,21 +353,27 @@ LIMIT_WHAT = {
 }
 
 
-def where_text(threads: list | None, shown: str, real: str) -> str:
-    """Where a stopped program's threads were, as its brick said (Session.where), the file named as the user
-    named it: ' (it was at prog.py, line 7)', or one place per thread; '' when the brick said nothing."""
-    if not threads:
-        return ""
+def shown_places(threads: list | None, shown: str, real: str) -> list[dict]:
+    """Where a stopped program's threads were, as its brick said (Session.where): {thread, file, line} each,
+    the file named as the user named it (shown; real: the program's path as its brick knew it)."""
     real_dir = os.path.join(os.path.dirname(real), "")
     shown_dir = os.path.join(os.path.dirname(shown), "") if os.path.dirname(shown) else ""
+    return [
+        {"thread": name, "file": file.replace(real, shown).replace(real_dir, shown_dir), "line": line}
+        for name, file, line in threads or []
+    ]
 
-    def place(file: str, line: int) -> str:
-        return f"{file.replace(real, shown).replace(real_dir, shown_dir)}, line {line}"
 
-    if len(threads) == 1:
-        return f" (it was at {place(threads[0][1], threads[0][2])})"
+def where_text(places: list[dict]) -> str:
+    """' (it was at prog.py, line 7)', or one place per thread; '' when the brick said nothing."""
+    if len(places) == 1:
+        return f" (it was at {places[0]['file']}, line {places[0]['line']})"
+    if not places:
+        return ""
     return (
-        " (its threads were: " + "; ".join(f"{name} at {place(f, line)}" for name, f, line in threads) + ")"
+        " (its threads were: "
+        + "; ".join(f"{p['thread']} at {p['file']}, line {p['line']}" for p in places)
+        + ")"
     )
 
 
@@ -434,10 +440,12 @@ def run_result(
                 error["robot"] = port.robot.name
         robot_t = t if port.gone or port.end is None else min(t, port.time_us / 1e6)
         threads = session.where.get(port.index) if session is not None else None
-        where = where_text(threads or (port.end or {}).get("threads"), name, real)
+        places = shown_places(threads or (port.end or {}).get("threads"), name, real)
+        where = where_text(places)
         ends.append(
             (_robot_end(port, found, brick, robot_t, where), _robot_end(port, found, brick, t, where))
         )
+        ends[-1][0]["places"] = places
     # the run: the first hang, interruption or crash; else the first error; a deadlock; the time limit
     order = [e for _, e in ends if e["early"]] or [e for _, e in ends if e["status"] == "error"]
     order = order or [e for _, e in ends if e["status"] == "hung"]
@@ -465,7 +473,12 @@ def run_result(
         for port, brick in zip(ports, bricks, strict=False)
     ]
     robots = [
-        {"robot": port.robot.name, "status": own["status"], "reason": own["reason"]}
+        {
+            "robot": port.robot.name,
+            "status": own["status"],
+            "reason": own["reason"],
+            "stopped_at": own["places"],
+        }
         for port, (own, _) in zip(ports, ends, strict=False)
     ]
     notes = [
