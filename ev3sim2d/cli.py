@@ -14,6 +14,7 @@ from .commands import (
     edit,
     examples,
     grade,
+    init,
     join,
     lessons,
     live,
@@ -38,6 +39,7 @@ COMMANDS = [
     show,
     edit,
     live,
+    init,
     doctor,
 ]  # a new subcommand: a module in commands/, one entry here
 
