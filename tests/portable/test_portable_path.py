@@ -376,3 +376,24 @@ def _alive(pid: int) -> bool:
             return f.read().rsplit(")", 1)[1].split()[0] != "Z"
     except OSError:
         return False
+
+
+@pytest.mark.parametrize("kind", ["windows", "macos"])
+def test_the_editor_lines_and_init_work_there(other_systems, kind, tmp_path):
+    """What an editor needs, on the other systems: a failing run's one-line place (a program stopped as
+    stuck too, where its brick's main thread answers for it) and `init vscode`."""
+    python = other_systems[kind]
+    (tmp_path / "zero.py").write_text("import time\ntime.sleep(0.2)\nx = 1 / 0\n")
+    (tmp_path / "stuck.py").write_text(
+        "import _thread\nlock = _thread.allocate_lock()\nlock.acquire()\nlock.acquire()\n"
+    )
+    failed = ev3sim2d(python, "run", "zero.py", cwd=tmp_path)
+    assert "zero.py:3: error: ZeroDivisionError: division by zero" in failed.stderr.splitlines(), (
+        failed.stderr
+    )
+    stuck = ev3sim2d(python, "run", "stuck.py", "--hang-after", 1, cwd=tmp_path)
+    assert "stuck.py:4: error: stuck here, so the run was stopped (thread MainThread)" in stuck.stderr, (
+        stuck.stderr
+    )
+    assert ev3sim2d(python, "init", "vscode", cwd=tmp_path).returncode == 0
+    assert json.loads((tmp_path / ".vscode" / "settings.json").read_text()) == {"ev3sim2d.world": "line"}
