@@ -309,6 +309,8 @@ class BrickLink:
 
     def write(self, class_name: str, device_name: str, attribute: str, value) -> None:
         self._task()
+        if self.scheduler.frozen:
+            raise RuntimeError("the program is stopped in the debugger: writing to the robot is refused")
         if not isinstance(value, str):
             value = bytes(value).decode("latin-1")
         known = self.checked.get((class_name, device_name, attribute))
@@ -365,6 +367,8 @@ class BrickLink:
             if not args:  # (["wait"] asks the simulator whether a press is to come: no EV3 does that)
                 self.scheduler.spend(BUTTONS_US)
             return answer
+        if feature == "debug":  # (brick/debugger.py: an event, answered by the front end's command)
+            return self._call(True, "debug", [args[0]])
         raise ValueError(f"the simulated brick has no feature {feature!r}")
 
     def _call(self, answered: bool, feature: str, args: list):

@@ -21,9 +21,11 @@ import io
 import os
 import sys
 import time
+from collections.abc import Callable
 
 from ..protocol import ProtocolError
 from .cpu_time import CpuTime
+from .debugger import BrickDebugger
 from .environment import BrickEnvironment, _real_start_new_thread
 from .link import BrickLink
 from .program import Program, ending, error_report
@@ -101,7 +103,8 @@ class BrickRun:
             self._end({"t_us": 0, "status": "error", "error": report})
             return
         self._count_lines(program)
-        task = s.spawn("robot", None, self.env.main_body(program.run), _real_start_new_thread, main=True)
+        body = self._debugging(program.run)
+        task = s.spawn("robot", None, self.env.main_body(body), _real_start_new_thread, main=True)
         s.start()
         if not self._watch():
             return
@@ -121,6 +124,25 @@ class BrickRun:
                 program.code = cpu.compile(f.read(), self.program_path)
         except (OSError, SyntaxError, ValueError, RecursionError, MemoryError):
             pass
+
+    def _debugging(self, run: Callable[[], None]) -> Callable[[], None]:
+        """breakpoint() as the welcome says (`debug`): a stop in the brick's debugger (brick/debugger.py),
+        or nothing, as PYTHONBREAKPOINT=0 makes it (grading, serving); with "start", the program stops
+        at its first line."""
+        mode = self.config.get("debug")
+        if mode not in ("breakpoints", "start"):
+            sys.breakpointhook = _no_breakpoint
+            return run
+        debugger = BrickDebugger(self.link, self.scheduler, os.path.dirname(self.program_path))
+        sys.breakpointhook = debugger.breakpoint
+        if mode == "breakpoints":
+            return run
+
+        def started() -> None:
+            debugger.start()
+            run()
+
+        return started
 
     def _cpu_time(self) -> CpuTime:
         """The program's own code: its files, not the brick's, the shims', Python's nor third parties' (even
@@ -176,3 +198,7 @@ class BrickRun:
                     return
         except ProtocolError:
             pass
+
+
+def _no_breakpoint(*args, **kwargs) -> None:
+    """breakpoint() where nobody debugs: nothing, as with PYTHONBREAKPOINT=0."""

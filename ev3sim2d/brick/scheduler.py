@@ -120,6 +120,7 @@ class Scheduler:
         self.end_reason: str | None = None
         self.settled = threading.Event()  # set once the run is over and every main task has ended
         self.program_file: Callable[[str], bool] = lambda filename: False  # the program's own code?
+        self.frozen = False  # stopped in the debugger (brick/debugger.py): no time passes, nobody waits
         self.where: list[list] | None = None  # [thread, file, line] of each task, when the run ended
 
     # ----------------------------------------------------------------- clock
@@ -214,6 +215,8 @@ class Scheduler:
         """The current task spends us microseconds of virtual time (may give up the turn)."""
         if self.over:
             raise RunOver()
+        if self.frozen:
+            return  # (looked at in the debugger: a read costs nothing, a sleep does not pass)
         target = self.now_us + us
         ready = self._ready
         if not ready or ready[0][0] > target:
@@ -234,6 +237,9 @@ class Scheduler:
         the interpreter's lock gets it at the end of the slice."""
         if self.over:
             raise RunOver()
+        if self.frozen:
+            task.cpu_us = 0
+            return
         slices = task.cpu_us // SWITCH_US
         task.cpu_us -= slices * SWITCH_US
         target = self.now_us + slices * SWITCH_US
@@ -247,6 +253,7 @@ class Scheduler:
 
     def wait(self, predicate: Callable[[], bool], timeout_us: int | None) -> bool:
         """Spend time tick by tick until predicate() is true or timeout_us passes."""
+        self._not_frozen()
         deadline = None if timeout_us is None else self.now_us + timeout_us
         while not predicate():
             if deadline is not None and self.now_us >= deadline:
@@ -259,6 +266,7 @@ class Scheduler:
         """The current task waits on channel until wake(channel) or timeout_us; True if woken."""
         if self.over:
             raise RunOver()
+        self._not_frozen()
         me = self.current
         me.woken = False
         channel.append(me)
@@ -270,6 +278,10 @@ class Scheduler:
             if not me.woken and me in channel:
                 channel.remove(me)
         return me.woken
+
+    def _not_frozen(self) -> None:
+        if self.frozen:
+            raise RuntimeError("the program is stopped in the debugger: nothing it looks at may wait")
 
     def wake(self, channel: list[Task], n: int | None = None) -> None:
         """Make the first n (all, if None) tasks blocked on channel ready to run now."""

@@ -11,12 +11,13 @@ from ..render.outputs import add_picture_arguments, write_pictures
 from ..results.summary import run_summary, write_summary
 from ..simulator.bricks import become_subreaper
 from ..simulator.program import ProgramError
-from ..simulator.run import RunResult, echo_line, run_programs, start_failure
+from ..simulator.run import RunResult, echo_line, robot_names, run_programs, start_failure
 from ..simulator.simulation import StartBlocked
 from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from ..world.source_error import WorldFileError
+from .debug_prompt import DebugPrompt
 from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 from .plot import add_value_arguments, matplotlib_missing, value_names, write_plot
 from .problem_lines import problem_lines
@@ -58,6 +59,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_programs_and_world(parser)
     add_run_options(
         parser, "stop a program that spins S real seconds without using the robot or the clock (default: 5)"
+    )
+    parser.add_argument(
+        "--debug",
+        action="store_true",
+        help="stop at the program's first line in the debugger, a prompt here (breakpoint() in a program "
+        "stops there too): the world waits while it is stopped; h at the prompt for help",
     )
 
 
@@ -220,6 +227,8 @@ def main(args) -> int:
             echo,
             presses=args.press,
             arguments=getattr(args, "program_arguments", ()),
+            debug="start" if args.debug else "breakpoints",
+            debugger=DebugPrompt(robot_names(len(args.programs))),
         )
     except (WorldFileError, RobotOptionError) as err:
         return fail(str(err))

@@ -155,6 +155,35 @@ def clean_end(how: dict) -> dict:
     return kept
 
 
+DEBUG_TEXT = 2000  # characters of a debugger event's text
+DEBUG_ITEMS = 64  # frames or breakpoints in a debugger event
+
+
+def clean_debug_event(event) -> dict:
+    """What is kept of an event of a brick's debugger (brick/debugger.py): texts and numbers only, short."""
+    if type(event) is not dict:
+        return {"event": "error", "message": "the brick's debugger sent no event"}
+
+    def place(item) -> dict:
+        item = item if type(item) is dict else {}
+        kept = {k: str(item.get(k, ""))[:DEBUG_TEXT] for k in ("file", "function", "source", "thread")}
+        line = item.get("line")
+        return {**kept, "line": line if type(line) is int else 0}
+
+    kept: dict = {"event": str(event.get("event", ""))[:50]}
+    for key in ("reason", "text", "message"):
+        if key in event:
+            kept[key] = str(event[key])[:DEBUG_TEXT]
+    if event.get("event") == "stopped":
+        kept.update(place(event))
+        kept["t_us"] = event["t_us"] if type(event.get("t_us")) is int else 0
+    for key in ("frames", "breakpoints"):
+        if type(event.get(key)) is list:
+            kept[key] = [place(item) for item in event[key][:DEBUG_ITEMS]]
+    kept["error"] = event.get("error") is True
+    return kept
+
+
 def clean_hello(info: dict) -> dict:
     """What is kept of a brick's hello: its protocol, Python, and sandbox report (layer -> text), short."""
     kept: dict = {key: info[key] for key in ("protocol",) if type(info.get(key)) is int}
@@ -218,6 +247,8 @@ class BrickPort:
         # real seconds the simulator waited on this brick, or applied its ops, since its clock last moved
         # (or the world let it go on): the session stops it as hung past hang_after_s (rule: docs/protocol.md)
         self.stalled_s = 0.0
+        self.debugger = None  # the front end a stopped program's debugger asks (event -> command), if any
+        self.debugged = False  # it asked since the session last looked: a stop is not a hang
         self._answers: list = []  # answers to the ops of the batch being applied
         self.broken = False  # a send failed: the brick is gone once what it sent is applied
 
@@ -524,6 +555,11 @@ class BrickPort:
                 raise ValueError(f"an LCD frame has {LCD_BYTES} bytes")
             self._lcd(now_s, pixels)
             return None
+        if feature == "debug":  # the program stopped in its brick's debugger: the front end says what next
+            self.debugged = True
+            if self.debugger is None:
+                return {"cmd": "continue"}
+            return self.debugger(clean_debug_event(args[0]))
         if feature == "buttons":
             pressed = [p.button for p in self.presses if p.down_at(now_s)]
             if (

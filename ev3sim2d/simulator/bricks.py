@@ -493,12 +493,15 @@ def brick_welcome(
     limits: BrickLimits,
     sandbox: bool = True,
     arguments: Sequence[str] = (),
+    debug: str | None = None,
 ) -> list:
     """The welcome a brick started here gets: its robot's name, the clock, the seed, its program, and
     the sandbox it must enter (what it may read and write, its limits; None: no sandbox).  Paths go as
     the brick names them (bricks_path); the program is its copy where the brick works in one.
     arguments: the program's own command line after its name (sys.argv[1:]); sys.argv[0] is the
-    program's name, as `python3 prog.py ARG...` in its folder gives it on a brick."""
+    program's name, as `python3 prog.py ARG...` in its folder gives it on a brick.
+    debug: None (breakpoint() does nothing, as in grading), "breakpoints" (it stops in the brick's
+    debugger) or "start" (the program stops at its first line too): brick/debugger.py."""
     ran = program if brick.working is None else brick.working.program
     return [
         "welcome",
@@ -510,6 +513,7 @@ def brick_welcome(
             "program": bricks_path(ran),
             "program_dirs": [bricks_path(ran.parent)],
             "argv": [ran.name, *(str(a) for a in arguments)],
+            "debug": debug,
             "shim_root": bricks_path(shim_root()),
             "site_packages": [bricks_path(p) for p in site_packages()],
             "sandbox": {

@@ -141,6 +141,8 @@ def run_programs(
     spin: bool = True,
     zygote=None,
     arguments: Sequence[str] = (),
+    debug: str | None = None,
+    debugger=None,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -156,6 +158,10 @@ def run_programs(
     share the cores, as in a class run with --jobs 2).
     zygote: a BrickZygote to fork the bricks from (a class run's), instead of starting each afresh.
     arguments: every program's command line after its name (its sys.argv[1:]).
+    debug: what breakpoint() does in the programs (None: nothing, as in grading; "breakpoints": it stops
+    in the brick's debugger; "start": each program stops at its first line too), and debugger the front
+    end a stopped program asks: debugger(robot index, shown, real, event) -> command, where shown is the
+    program as the caller named it and real its path as its brick knows it (brick/debugger.py).
     Each brick works in a copy of its program's folder (simulator/working_folder.py).
     Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
     simulator's): a program learns of the world only by its sensors.
@@ -181,10 +187,24 @@ def run_programs(
             brick_seed = seed if program_seed is None else program_seed
             brick.channel.send(
                 brick_welcome(
-                    brick, read_paths, path, names[i], sim.tick_us, brick_seed, limits, sandbox, arguments
+                    brick,
+                    read_paths,
+                    path,
+                    names[i],
+                    sim.tick_us,
+                    brick_seed,
+                    limits,
+                    sandbox,
+                    arguments,
+                    debug,
                 )
             )
             ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
+            if debugger is not None:
+                shown, real = str(program.path), ran_as(path, brick)
+                ports[-1].debugger = lambda event, i=i, shown=shown, real=real: debugger(
+                    i, shown, real, event
+                )
         for port in ports:
             await_hello(port)
         session, wall = play(sim, ports, limit_us, hang_after_s, printed, echo, spin)
@@ -353,13 +373,19 @@ LIMIT_WHAT = {
 }
 
 
-def shown_places(threads: list | None, shown: str, real: str) -> list[dict]:
-    """Where a stopped program's threads were, as its brick said (Session.where): {thread, file, line} each,
-    the file named as the user named it (shown; real: the program's path as its brick knew it)."""
+def shown_file(file: str, shown: str, real: str) -> str:
+    """A file of the program's, as its brick names it, named as the user named the program (shown; real:
+    the program's path as its brick knows it): the program itself, or a file beside it."""
     real_dir = os.path.join(os.path.dirname(real), "")
     shown_dir = os.path.join(os.path.dirname(shown), "") if os.path.dirname(shown) else ""
+    return file.replace(real, shown).replace(real_dir, shown_dir)
+
+
+def shown_places(threads: list | None, shown: str, real: str) -> list[dict]:
+    """Where a stopped program's threads were, as its brick said (Session.where): {thread, file, line} each,
+    the file named as the user named it (shown_file)."""
     return [
-        {"thread": name, "file": file.replace(real, shown).replace(real_dir, shown_dir), "line": line}
+        {"thread": name, "file": shown_file(file, shown, real), "line": line}
         for name, file, line in threads or []
     ]
 

@@ -179,7 +179,8 @@ class Session:
         """The simulator spent spent_s of real time on this brick (waiting for it, or applying its ops): held
         against it unless its clock moved past clock_us.  Judged (judge: its messages so far are applied),
         a brick whose clock has stood still for hang_after_s of such time is stopped as hung."""
-        if port.time_us > clock_us:
+        if port.time_us > clock_us or port.debugged:  # (a program stopped in its debugger is not hung)
+            port.debugged = False
             port.stalled_s = 0.0
             return
         port.stalled_s += spent_s
