@@ -7,6 +7,9 @@ own tasks.  What is there stays byte for byte, and a second init changes nothing
 from __future__ import annotations
 
 import json
+import re
+import subprocess
+import sys
 import xml.etree.ElementTree as ElementTree
 
 import pytest
@@ -47,8 +50,9 @@ def test_a_project_without_vscode_files_gets_all_three(tmp_path, capsys):
     assert run["problemMatcher"]["pattern"]["regexp"]
     live = next(t for t in tasks["tasks"] if t["label"] == "run in ev3sim2d live")
     assert live["args"][2:4] == ["live", "${file}"]
-    assert [c["name"] for c in launch["configurations"]] == ["run in ev3sim2d"]
-    assert settings == {"ev3sim2d.world": "line"}  # the one place the world is named
+    assert [c["name"] for c in launch["configurations"]] == ["debug in ev3sim2d", "run in ev3sim2d"]
+    token = settings.pop("ev3sim2d.debugToken")  # the project's own, new each time a project gets one
+    assert len(token) >= 20 and settings == {"ev3sim2d.world": "line"}  # the one place the world is named
     assert "written" in capsys.readouterr().out
 
 
@@ -65,9 +69,11 @@ def test_it_adds_to_files_vs_code_made_and_keeps_every_byte_of_them(tmp_path):
     assert [t["label"] for t in tasks["tasks"]] == [
         "run in ev3sim2d",
         "run in ev3sim2d live",
+        "ev3sim2d debug server",
         "copy to the brick",
     ]
-    assert parse((folder / "settings.json").read_text()) == {"ev3sim2d.world": "maze", "editor.fontSize": 16}
+    settings = parse((folder / "settings.json").read_text())
+    assert settings.pop("ev3sim2d.debugToken") and settings == {"ev3sim2d.world": "maze", "editor.fontSize": 16}
     before = {name: (folder / name).read_bytes() for name in ("tasks.json", "launch.json", "settings.json")}
     assert _init(tmp_path, "vscode") == 0  # a second time: nothing changes
     assert {name: (folder / name).read_bytes() for name in before} == before
@@ -81,11 +87,13 @@ def test_a_students_own_task_of_that_name_and_own_world_stay(tmp_path):
     (folder / "settings.json").write_text('{"ev3sim2d.world": "sumo"}')
     assert _init(tmp_path, "vscode") == 0
     tasks = parse((folder / "tasks.json").read_text())["tasks"]
-    assert tasks[1] == mine["tasks"][0] and [t["label"] for t in tasks] == [
+    assert tasks[-1] == mine["tasks"][0] and [t["label"] for t in tasks] == [
         "run in ev3sim2d live",
+        "ev3sim2d debug server",
         "run in ev3sim2d",
     ]
-    assert parse((folder / "settings.json").read_text()) == {"ev3sim2d.world": "sumo"}
+    settings = parse((folder / "settings.json").read_text())
+    assert settings.pop("ev3sim2d.debugToken") and settings == {"ev3sim2d.world": "sumo"}
 
 
 def test_a_broken_file_is_named_with_its_line_and_nothing_is_written(tmp_path, capsys):
@@ -134,3 +142,37 @@ def test_the_tasks_problem_matcher_is_the_one_the_run_lines_are_made_for():
     from ev3sim2d.commands.problem_lines import PATTERN
 
     assert all(t["problemMatcher"]["pattern"]["regexp"] == PATTERN for t in init.vscode_tasks())
+
+
+def test_f5_starts_the_debug_server_and_attaches_with_the_projects_token(tmp_path):
+    """The launch configuration's pre-launch task runs the file with --debug-adapter on the port it
+    attaches to, with the token from settings.json; VS Code attaches once the task's background pattern
+    sees the run's waiting line."""
+    assert _init(tmp_path, "vscode") == 0
+    folder = tmp_path / ".vscode"
+    launch = next(
+        c for c in parse((folder / "launch.json").read_text())["configurations"] if c["request"] == "attach"
+    )
+    server = next(
+        t
+        for t in parse((folder / "tasks.json").read_text())["tasks"]
+        if t["label"] == launch["preLaunchTask"]
+    )
+    assert launch["type"] == "debugpy" and launch["connect"]["host"] == "127.0.0.1"
+    args = server["args"]
+    assert args[args.index("--debug-adapter") + 1] == str(launch["connect"]["port"])
+    assert args[args.index("--debug-token") + 1] == launch["ev3sim2dToken"] == "${config:ev3sim2d.debugToken}"
+    assert server["isBackground"] is True
+    program = tmp_path / "prog.py"
+    program.write_text("print('hi')\n")
+    run = subprocess.Popen(
+        [sys.executable, "-m", "ev3sim2d", "run", str(program), "--debug-adapter", "0"],
+        stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        waiting = run.stderr.readline()
+    finally:
+        run.kill()
+        run.wait()
+    background = server["problemMatcher"]["background"]
+    assert re.search(background["beginsPattern"], waiting) and re.search(background["endsPattern"], waiting)

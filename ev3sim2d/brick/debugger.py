@@ -14,8 +14,8 @@ terminal prompt, or a Debug Adapter Protocol server) asks the student.  While it
 
 Only the program's own files are stepped through (scheduler.program_file): the shim's, the brick's and
 Python's are stepped over.  Events: `stopped` (why, thread, file, line, function, source line), then one
-answer per command: `stack`, `value`, `breakpoints`, `error`.  Commands: continue, step, next, return,
-where, eval, break, clear.
+answer per command: `stack`, `value`, `variables`, `breakpoints`, `error`.  Commands: continue, step, next,
+return, where, eval, variables, break, clear.
 """
 
 from __future__ import annotations
@@ -27,12 +27,15 @@ import os
 import random
 import sys
 import threading
+import types
 
 from .cpu_time import CpuTime
 
 TEXT = 2000  # characters of a value or a source line sent, at most
 FRAMES = 64  # frames of a stack sent, at most
 RESUMING = {"continue", "step", "next", "return"}
+VARIABLES = 200  # names of a scope sent, at most
+SKIPPED_KINDS = (types.ModuleType, types.FunctionType, types.BuiltinFunctionType, type)
 
 
 class BrickDebugger(bdb.Bdb):
@@ -76,6 +79,7 @@ class BrickDebugger(bdb.Bdb):
             "thread": task.thread_name if task is not None else "MainThread",
             **self._place(frame),
             "t_us": self.scheduler.now_us,
+            "threads": [t.thread_name for t in self.scheduler.tasks if not t.done][:FRAMES],
         }
         line_function = getattr(builtins, CpuTime.LINE, None)
         self.scheduler.frozen = True
@@ -108,6 +112,8 @@ class BrickDebugger(bdb.Bdb):
             return {"event": "stack", "frames": self._stack(frame)}
         if what == "eval":
             return {"event": "value", **self._evaluate(str(command.get("expr", "")), frame)}
+        if what == "variables":
+            return {"event": "variables", "variables": self._variables(frame, command.get("scope"))}
         if what == "break":
             return self._break(command, frame)
         if what == "clear":
@@ -135,11 +141,24 @@ class BrickDebugger(bdb.Bdb):
         state = random.getstate()
         try:
             value = eval(expression, frame.f_globals, frame.f_locals)  # noqa: S307 - the student's own program
-            return {"text": _short(repr(value))}
+            return {"text": _short(_repr(value))}
         except Exception as err:  # noqa: BLE001 - the student's expression: its error is the answer
             return {"text": _short(f"{type(err).__name__}: {err}"), "error": True}
         finally:
             random.setstate(state)
+
+    def _variables(self, frame, scope) -> list[dict]:
+        """The frame's local (or, scope "globals", global) names and their values as repr shows them; the
+        program's own, not modules, functions, classes nor dunders."""
+        names = frame.f_globals if scope == "globals" else frame.f_locals
+        shown = []
+        for name, value in list(names.items()):
+            if name.startswith("__") or isinstance(value, SKIPPED_KINDS):
+                continue
+            shown.append({"name": name, "value": _short(_repr(value)), "type": type(value).__name__})
+            if len(shown) >= VARIABLES:
+                break
+        return shown
 
     def _break(self, command: dict, frame) -> dict:
         line = command.get("line")
@@ -155,6 +174,13 @@ class BrickDebugger(bdb.Bdb):
             return {"event": "error", "message": str(problem)[:TEXT]}
         breaks = [{"file": f, "line": n} for f, lines in self.get_all_breaks().items() for n in lines]
         return {"event": "breakpoints", "breakpoints": breaks}
+
+
+def _repr(value) -> str:
+    try:
+        return repr(value)
+    except Exception as err:  # noqa: BLE001 - a program's __repr__ may fail: that is what is shown
+        return f"<{type(value).__name__}: repr failed: {type(err).__name__}>"
 
 
 def _free_line() -> bool:

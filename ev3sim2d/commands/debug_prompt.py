@@ -123,11 +123,15 @@ class DebugPrompt:
 
 
 def brick_file(file: str, shown: str, real: str) -> str:
-    """A file the student names (as they named the program, or by its name in the program's folder) as the
-    brick knows it: the program's copy, or the file beside it."""
-    shown_dir, real_dir = os.path.dirname(shown), os.path.dirname(real)
-    if file == shown:
-        return real
-    if shown_dir and file.startswith(os.path.join(shown_dir, "")):
-        return os.path.join(real_dir, file[len(shown_dir) + 1 :])
+    """A file the student names as the brick knows it: the program as they named it, a file by its path
+    (an editor's absolute one too) in the program's folder, or by its name there, becomes the copy's."""
+    real_dir = os.path.dirname(real)
+    for named, folder in (
+        (file, os.path.dirname(shown)),
+        (os.path.abspath(file), os.path.dirname(os.path.abspath(shown))),
+    ):
+        if os.path.normcase(named) == os.path.normcase(os.path.join(folder, os.path.basename(shown))):
+            return real
+        if folder and os.path.normcase(named).startswith(os.path.normcase(os.path.join(folder, ""))):
+            return os.path.join(real_dir, named[len(folder) + 1 :])
     return file if os.path.isabs(file) else os.path.join(real_dir, file)

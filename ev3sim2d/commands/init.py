@@ -5,8 +5,12 @@
   live page, so that the robot is seen driving), each with the Python extension's interpreter, the
   current file, and a problem matcher that reads the run's `FILE:LINE: error: ...` lines
   (problem_lines.py), so that the Problems panel lists the program's error, and where a stuck program was;
-- launch.json: an F5 configuration that runs the current file in ev3sim2d;
-- settings.json: `ev3sim2d.world`, the world every one of them runs in: the one place to change it.
+- launch.json: F5, "debug in ev3sim2d": the task "ev3sim2d debug server" runs the current file with
+  `--debug-adapter`, and VS Code's debugger (the Python extension's debugpy, attaching) connects to it:
+  breakpoints, stepping, threads, the stack and variables, while the whole world waits
+  (debug_adapter.py); and "run in ev3sim2d", which runs it without;
+- settings.json: `ev3sim2d.world`, the world every one of them runs in: the one place to change it;
+  and `ev3sim2d.debugToken`, the project's own token, which only its launch configuration gives.
 Each is added to a file that exists, as text: nothing a student (or VS Code) wrote is changed, and an
 entry of the same name is left as the student has it (jsonc_file.py).
 
@@ -17,6 +21,7 @@ file (PyCharm's `$FilePath$`), unless one is there.
 from __future__ import annotations
 
 import argparse
+import secrets
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
@@ -33,6 +38,11 @@ WORLD_SETTING = "ev3sim2d.world"
 WORLD = "${config:" + WORLD_SETTING + "}"
 PYTHON = "${command:python.interpreterPath}"
 RUN_TASK, LIVE_TASK = "run in ev3sim2d", "run in ev3sim2d live"
+DEBUG_TASK, DEBUG_LAUNCH = "ev3sim2d debug server", "debug in ev3sim2d"
+TOKEN_SETTING = "ev3sim2d.debugToken"
+TOKEN = "${config:" + TOKEN_SETTING + "}"
+DEBUG_PORT = 5678
+WAITING = "^ev3sim2d: waiting for the debugger"  # (the run's line once its debug adapter listens)
 MAX_BYTES = 2**20  # an editor's settings file, at most
 NEW_FILES = {  # what a file that is not there yet starts as (VS Code wants each file's version)
     "tasks.json": '{\n    "version": "2.0.0",\n    "tasks": []\n}\n',
@@ -72,6 +82,16 @@ def vscode_tasks() -> list[dict]:
             "problemMatcher": PROBLEM_MATCHER,
         }
 
+    server = task(
+        DEBUG_TASK, "run", "the current file, waiting for VS Code's debugger (F5: debug in ev3sim2d)", False
+    )
+    server["args"] += ["--debug-adapter", str(DEBUG_PORT), "--debug-token", TOKEN]
+    server["isBackground"] = True
+    server["group"] = "none"
+    server["problemMatcher"] = {
+        **PROBLEM_MATCHER,
+        "background": {"activeBegins": True, "beginsPattern": WAITING, "endsPattern": WAITING},
+    }
     return [
         task(
             RUN_TASK,
@@ -80,11 +100,20 @@ def vscode_tasks() -> list[dict]:
             True,
         ),
         task(LIVE_TASK, "live", "the current file on the live page: the robot drives in the browser", False),
+        server,
     ]
 
 
 def vscode_launches() -> list[dict]:
     return [
+        {
+            "name": DEBUG_LAUNCH,
+            "type": "debugpy",
+            "request": "attach",
+            "connect": {"host": "127.0.0.1", "port": DEBUG_PORT},
+            "preLaunchTask": DEBUG_TASK,
+            "ev3sim2dToken": TOKEN,  # (the run lets in only the debugger that gives it: debug_adapter.py)
+        },
         {
             "name": RUN_TASK,
             "type": "debugpy",
@@ -95,7 +124,7 @@ def vscode_launches() -> list[dict]:
             "console": "integratedTerminal",
             "subProcess": False,  # (the program runs in its own sandboxed brick: no debugger reaches in there)
             "justMyCode": True,
-        }
+        },
     ]
 
 
@@ -150,10 +179,7 @@ def _vscode(folder: Path, world: str) -> list[str]:
                 text, "configurations", _missing(vscode_launches(), have, "configurations", "name")
             ),
         ),
-        (
-            "settings.json",
-            lambda text, have: text if WORLD_SETTING in have else add_key(text, WORLD_SETTING, world),
-        ),
+        ("settings.json", lambda text, have: _settings(text, have, world)),
     ]
     planned = []  # every file is read and planned before any is written: a broken one stops them all
     for name, plan in plans:
@@ -180,6 +206,16 @@ def _vscode(folder: Path, world: str) -> list[str]:
         f'Open a program and press Ctrl+Shift+B (or F5, "{RUN_TASK}"); change the world in {folder / "settings.json"}.'
     )
     return changes
+
+
+def _settings(text: str, have: dict, world: str) -> str:
+    """The world, and the project's own debugger token (a new one, kept in the project: the launch
+    configuration gives it to the run it attaches to)."""
+    if TOKEN_SETTING not in have:
+        text = add_key(text, TOKEN_SETTING, secrets.token_urlsafe(16))
+    if WORLD_SETTING not in have:
+        text = add_key(text, WORLD_SETTING, world)
+    return text
 
 
 def _pycharm(folder: Path, world: str) -> list[str]:

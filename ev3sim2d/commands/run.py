@@ -17,6 +17,7 @@ from ..world.button_press import ButtonPress, parse_press
 from ..world.maze_file import find_maze, load_maze
 from ..world.robot_spec import RobotSpec, find_robot, load_robot, shipped_robot_names
 from ..world.source_error import WorldFileError
+from .debug_adapter import DebugAdapter
 from .debug_prompt import DebugPrompt
 from .exit_codes import EXIT_HUNG, EXIT_INTERRUPTED, EXIT_OK, EXIT_PROGRAM_ERROR, EXIT_USAGE, fail
 from .plot import add_value_arguments, matplotlib_missing, value_names, write_plot
@@ -65,6 +66,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="stop at the program's first line in the debugger, a prompt here (breakpoint() in a program "
         "stops there too): the world waits while it is stopped; h at the prompt for help",
+    )
+    parser.add_argument(
+        "--debug-adapter",
+        type=int,
+        metavar="PORT",
+        help="debug from an editor instead: wait on 127.0.0.1:PORT (0: any free port) for one Debug Adapter "
+        "Protocol client (VS Code's debugpy attach) that gives the token; docs/editors.md",
+    )
+    parser.add_argument(
+        "--debug-token",
+        metavar="TOKEN",
+        help="the token the debugger must give (default: a new one, printed)",
     )
 
 
@@ -164,6 +177,8 @@ def write_outputs(args, result: RunResult, programs: list[str]) -> None:
         write_plot(result.trace, args.plot, value_names(args.plot_values))
 
 
+ATTACH_S = 120  # seconds to wait for the editor's debugger to attach
+
 STATUS_CODES = {
     "finished": EXIT_OK,
     "time_limit": EXIT_OK,
@@ -216,6 +231,11 @@ def main(args) -> int:
             if not Path(program).is_file():
                 return fail(f"{program}: no such program file")
         echo = None if args.quiet else echo_line(sys.stdout, len(args.programs), show=one_line)
+        debugger = DebugPrompt(robot_names(len(args.programs)))
+        if args.debug_adapter is not None:
+            debugger = DebugAdapter(args.debug_adapter, args.debug_token)
+            if not debugger.attach(timeout_s=ATTACH_S):
+                return fail(f"no debugger attached within {ATTACH_S} s, or it did not give the run's token")
         become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
         result = run_programs(
             args.programs,
@@ -227,8 +247,8 @@ def main(args) -> int:
             echo,
             presses=args.press,
             arguments=getattr(args, "program_arguments", ()),
-            debug="start" if args.debug else "breakpoints",
-            debugger=DebugPrompt(robot_names(len(args.programs))),
+            debug="start" if args.debug or args.debug_adapter is not None else "breakpoints",
+            debugger=debugger,
         )
     except (WorldFileError, RobotOptionError) as err:
         return fail(str(err))
@@ -237,4 +257,7 @@ def main(args) -> int:
     except (StartBlocked, FileNotFoundError) as err:
         return fail(str(err))
 
-    return report_end(args, result, args.programs)
+    status = report_end(args, result, args.programs)
+    if isinstance(debugger, DebugAdapter):
+        debugger.finished(status)
+    return status

@@ -156,7 +156,8 @@ def clean_end(how: dict) -> dict:
 
 
 DEBUG_TEXT = 2000  # characters of a debugger event's text
-DEBUG_ITEMS = 64  # frames or breakpoints in a debugger event
+DEBUG_ITEMS = 64  # frames, breakpoints or threads in a debugger event
+DEBUG_VARIABLES = 200  # names of a scope in a debugger event
 
 
 def clean_debug_event(event) -> dict:
@@ -180,6 +181,14 @@ def clean_debug_event(event) -> dict:
     for key in ("frames", "breakpoints"):
         if type(event.get(key)) is list:
             kept[key] = [place(item) for item in event[key][:DEBUG_ITEMS]]
+    if type(event.get("threads")) is list:
+        kept["threads"] = [str(name)[:100] for name in event["threads"][:DEBUG_ITEMS]]
+    if type(event.get("variables")) is list:
+        kept["variables"] = [
+            {k: str(item.get(k, ""))[:DEBUG_TEXT] for k in ("name", "value", "type")}
+            for item in event["variables"][:DEBUG_VARIABLES]
+            if type(item) is dict
+        ]
     kept["error"] = event.get("error") is True
     return kept
 
