@@ -11,8 +11,10 @@ from ..live.engine import MAX_SPEED, MIN_SPEED, LiveError, LiveRun
 from ..live.server import LiveServer, LiveWorldFile
 from ..simulator.bricks import become_subreaper
 from ..simulator.program import ProgramError
+from ..simulator.run import robot_names
 from ..world.maze_file import find_maze, load_maze
 from ..world.source_error import WorldFileError
+from .debug_prompt import DebugPrompt
 from .exit_codes import EXIT_OK, fail
 from .run import RobotOptionError, add_programs_and_world, robots_given
 
@@ -26,6 +28,12 @@ PASSES_ARGUMENTS = True  # `live PROG... -- ARG...`: what follows -- is the prog
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_programs_and_world(parser)
     parser.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
+    parser.add_argument(
+        "--debug",
+        action="store_true",
+        help="stop at the program's first line in the debugger, a prompt in this terminal (breakpoint() "
+        "stops there too); the page says where it is stopped, and the world waits",
+    )
     pace = parser.add_mutually_exclusive_group()
     pace.add_argument(
         "--speed",
@@ -67,6 +75,8 @@ def main(args) -> int:
             seed=args.seed,
             time_limit_s=args.time,
             arguments=getattr(args, "program_arguments", ()),
+            debug="start" if args.debug else "breakpoints",
+            debugger=DebugPrompt(robot_names(len(args.programs))),
         )
     except (WorldFileError, ProgramError, RobotOptionError, LiveError, FileNotFoundError) as err:
         return fail(str(err))

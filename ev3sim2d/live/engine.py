@@ -33,6 +33,7 @@ from ..simulator.run import (
     robot_names,
     robot_specs,
     run_result,
+    shown_file,
 )
 from ..simulator.session import Session
 from ..world.cell import Cell
@@ -68,11 +69,18 @@ class LiveRun:
         hang_after_s: float = 5.0,
         watch: bool = True,
         arguments: Sequence[str] = (),
+        debug: str | None = None,
+        debugger=None,
     ) -> None:
         """watch: reload by itself when a program file changes on disk.  arguments: every program's
-        command line after its name (its sys.argv[1:])."""
+        command line after its name (its sys.argv[1:]).  debug, debugger: as run_programs takes them
+        (breakpoint() stops the program in its brick's debugger, and debugger is the front end it asks);
+        while a program is stopped, the state says where (`debugging`) and the whole world waits."""
         self.programs = [Path(p) for p in programs]
         self.arguments = [str(a) for a in arguments]
+        self.debug = debug
+        self.debugger = debugger
+        self.debugging: str | None = None  # where a program is stopped in its debugger: prog.py:12
         for path in self.programs:
             Program(path)  # ProgramError now, for a file that is missing (a syntax error shows on the page)
         if len(self.programs) > len(world.starts):
@@ -298,10 +306,23 @@ class LiveRun:
             self._shown.append((str(path), ran_as(real, brick)))
             self._bricks.append(brick)
             welcome = brick_welcome(
-                brick, read_paths, real, names[i], sim.tick_us, self.seed, limits, arguments=self.arguments
+                brick,
+                read_paths,
+                real,
+                names[i],
+                sim.tick_us,
+                self.seed,
+                limits,
+                arguments=self.arguments,
+                debug=self.debug if self.debugger is not None else None,
             )
             brick.channel.send(welcome)
             self._ports.append(BrickPort(i, sim.robots[i], brick.channel, sim.trace, presses, printed))
+            if self.debugger is not None:
+                shown, real_path = self._shown[-1]
+                self._ports[-1].debugger = lambda event, i=i, shown=shown, real=real_path: self._stopped(
+                    i, shown, real, event
+                )
         for port in self._ports:
             await_hello(port)
         self._session = Session(sim, self._ports, self.limit_us, self.hang_after_s, printed, None, spin=False)
@@ -309,6 +330,21 @@ class LiveRun:
         self._pace = (time.perf_counter(), 0)
         self._check_ended()
         self._publish()
+
+    def _stopped(self, index: int, shown: str, real: str, event: dict) -> dict:
+        """A program stopped in its brick's debugger: the page says where, the front end says what next."""
+        if event.get("event") == "stopped":
+            self.debugging = f"{shown_file(event.get('file', ''), shown, real)}:{event.get('line', 0)}"
+            self._publish()
+        try:
+            command = self.debugger(index, shown, real, event)
+        except KeyboardInterrupt:  # (quit at the prompt: this program stops no more, the run goes on)
+            self._ports[index].debugger = None
+            command = {"cmd": "continue"}
+        if command.get("cmd") in ("continue", "step", "next", "return"):
+            self.debugging = None
+            self._publish()
+        return command
 
     def _stop_bricks(self) -> None:
         for brick in self._bricks:
@@ -524,6 +560,7 @@ class LiveRun:
             "printed_count": len(trace.output) if trace is not None else 0,
             "interventions": self._interventions,
             "error": self.error,
+            "debugging": self.debugging,
         }
         with self._state_lock:
             self._state = state

@@ -359,11 +359,14 @@
   function showPanel(state) {
     document.getElementById("clock").textContent = `t = ${state.t_s.toFixed(2)} s`;
     const badge = document.getElementById("status-badge");
-    badge.textContent = state.status + (state.interventions ? ` · ${state.interventions} by hand` : "");
-    badge.className = `badge ${state.status}`;
+    // a program stopped in its debugger (a prompt in the terminal that started live): the world waits
+    const status = state.debugging ? `paused at ${state.debugging}` : state.status;
+    badge.textContent = status + (state.interventions ? ` · ${state.interventions} by hand` : "");
+    badge.className = `badge ${state.debugging ? "paused" : state.status}`;
+    badge.title = state.debugging ? "stopped in the debugger: go on at its prompt, in the terminal" : "";
     const pause = document.getElementById("pause");
     pause.textContent = state.status === "running" ? "Pause" : "Resume";
-    pause.disabled = state.status === "ended" || state.status === "starting";
+    pause.disabled = state.status === "ended" || state.status === "starting" || Boolean(state.debugging);
     const speed = document.getElementById("speed");
     const want = state.speed === null ? "max" : String(state.speed);
     if (document.activeElement !== speed && speed.value !== want) {
