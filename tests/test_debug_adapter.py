@@ -185,3 +185,37 @@ def test_stop_on_entry_stops_at_the_first_line(folder):
     finally:
         run.kill()
     assert run.returncode == 0
+
+
+def test_every_thread_of_the_program_is_listed_with_its_own_stack(tmp_path):
+    (tmp_path / "prog.py").write_text(
+        "import threading, time\n"
+        "def blink():\n"
+        "    while True:\n"
+        "        time.sleep(0.25)\n"
+        "threading.Thread(target=blink, name='blinker', daemon=True).start()\n"
+        "time.sleep(1)\n"
+        "total = 3\n"
+    )
+    run, port, token = _start(tmp_path)
+    try:
+        client = Client(port)
+        client.request("initialize")
+        client.request("attach", ev3sim2dToken=token)
+        client.request(
+            "setBreakpoints", source={"path": str(tmp_path / "prog.py")}, breakpoints=[{"line": 7}]
+        )
+        client.request("configurationDone")
+        stopped = client.event("stopped")["body"]
+        threads = {t["name"]: t["id"] for t in client.request("threads")["body"]["threads"]}
+        assert set(threads) == {"MainThread", "blinker"} and threads["MainThread"] == stopped["threadId"]
+        main = client.request("stackTrace", threadId=threads["MainThread"])["body"]["stackFrames"]
+        blinker = client.request("stackTrace", threadId=threads["blinker"])["body"]["stackFrames"]
+        assert main[0]["line"] == 7
+        assert (blinker[0]["name"], blinker[0]["line"]) == ("blink", 4)  # waiting in its sleep
+        client.request("continue", threadId=stopped["threadId"])
+        client.event("terminated")
+        run.communicate(timeout=120)
+    finally:
+        run.kill()
+    assert run.returncode == 0

@@ -109,7 +109,7 @@ class BrickDebugger(bdb.Bdb):
                 self.set_return(frame)
             return None
         if what == "where":
-            return {"event": "stack", "frames": self._stack(frame)}
+            return {"event": "stack", "frames": self._stack(self._frame_of(command.get("thread"), frame))}
         if what == "eval":
             return {"event": "value", **self._evaluate(str(command.get("expr", "")), frame)}
         if what == "variables":
@@ -120,6 +120,16 @@ class BrickDebugger(bdb.Bdb):
             self.clear_all_breaks()
             return {"event": "breakpoints", "breakpoints": []}
         return {"event": "error", "message": f"unknown command {str(what)[:50]!r}"}
+
+    def _frame_of(self, thread, frame):
+        """The innermost frame of the program's thread of that name (another thread than the one stopped
+        waits where it is: at a sleep, a lock, a read), or the stopped one's."""
+        current = self.scheduler.task_for_thread()
+        for task in self.scheduler.tasks:
+            if task.thread_name == thread and task is not current and not task.done:
+                waiting = sys._current_frames().get(task.thread_id)
+                return waiting if waiting is not None else frame
+        return frame
 
     def _place(self, frame) -> dict:
         file, line = frame.f_code.co_filename, frame.f_lineno

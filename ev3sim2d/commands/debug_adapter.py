@@ -50,6 +50,8 @@ class DebugAdapter:
         self.waiting: dict | None = None  # the editor's request the brick's next event answers
         self.started = False  # the first stop (the program's first line) is the adapter's own
         self.stopped: dict | None = None  # the stop the editor is looking at
+        self.thread_ids: dict[str, int] = {"MainThread": 1}
+        self.thread_names: dict[int, str] = {1: "MainThread"}
 
     # ------------------------------------------------------------ the session's start
     def attach(self, timeout_s: float | None = None) -> bool:
@@ -174,7 +176,7 @@ class DebugAdapter:
             elif command in ("stackTrace", "evaluate", "variables"):
                 self.waiting = request
                 if command == "stackTrace":
-                    return {"cmd": "where"}
+                    return {"cmd": "where", "thread": self.thread_names.get(arguments.get("threadId"))}
                 if command == "evaluate":
                     return {"cmd": "eval", "expr": str(arguments.get("expression", ""))}
                 reference = arguments.get("variablesReference")
@@ -258,9 +260,12 @@ class DebugAdapter:
         verified = [{"verified": True, "line": line} for line in lines[:64]]
         self._respond(request, body={"breakpoints": verified})
 
-    @staticmethod
-    def _thread_id(name: str) -> int:
-        return 1 if name == "MainThread" else 2 + (sum(name.encode()) * 31 + len(name)) % 1_000_000
+    def _thread_id(self, name: str) -> int:
+        """A thread's id for the editor: the same for the same name all session long."""
+        if name not in self.thread_ids:
+            self.thread_ids[name] = len(self.thread_ids) + 1
+            self.thread_names[self.thread_ids[name]] = name
+        return self.thread_ids[name]
 
     # ------------------------------------------------------------ the wire
     def _receive(self) -> dict | None:
