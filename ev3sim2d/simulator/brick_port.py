@@ -565,9 +565,9 @@ class BrickPort:
             self._lcd(now_s, pixels)
             return None
         if feature == "debug":  # the program stopped in its brick's debugger: the front end says what next
-            self.debugged = True
-            if self.debugger is None:
+            if self.debugger is None:  # (nobody debugs: grading, serving; a brick that asks is no less hung)
                 return {"cmd": "continue"}
+            self.debugged = True
             return self.debugger(clean_debug_event(args[0]))
         if feature == "buttons":
             pressed = [p.button for p in self.presses if p.down_at(now_s)]

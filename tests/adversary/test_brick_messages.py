@@ -872,6 +872,10 @@ LOOKS_ALIVE = {  # (its clock is at TICK)
     "write": [["w", 0, "100"]],
     "checked_write": [["W", 0, "100"], ["q"]],
     "request": [["q"]],
+    "debugger_stop": [
+        ["C", TICK, "debug", [{"event": "stopped", "file": "p.py", "line": 1}]],
+        ["q"],
+    ],  # (nobody debugs)
     "new_key": None,  # a new attribute each time
 }
 
