@@ -396,4 +396,10 @@ def test_the_editor_lines_and_init_work_there(other_systems, kind, tmp_path):
         stuck.stderr
     )
     assert ev3sim2d(python, "init", "vscode", cwd=tmp_path).returncode == 0
-    assert json.loads((tmp_path / ".vscode" / "settings.json").read_text()) == {"ev3sim2d.world": "line"}
+    settings = json.loads((tmp_path / ".vscode" / "settings.json").read_text())
+    assert settings["ev3sim2d.world"] == "line" and settings["ev3sim2d.debugToken"]
+    stopped = subprocess.run(  # the debugger's prompt, through the portable brick's connection
+        [str(python), "-m", "ev3sim2d", "run", "zero.py", "--debug"],
+        input="n\np time.monotonic() > 0\nc\n", capture_output=True, text=True, cwd=tmp_path, timeout=120,
+    )  # fmt: skip
+    assert "stopped at zero.py:1 in <module>" in stopped.stdout and "(ev3sim2d) True" in stopped.stdout
