@@ -76,7 +76,7 @@ def test_breakpoint_stops_the_program_and_looking_changes_nothing(folder):
 
 def test_run_debug_stops_at_the_first_line_and_steps_to_a_breakpoint_with_the_same_run(folder):
     (folder / "nobreak.py").write_text(PROGRAM.replace("breakpoint()\n", "pass\n"))
-    commands = "b 10\nc\ns\ns\nn\nw\nc\n"
+    commands = "b 10\nc\ns\n\nn\nw\nc\n"  # (the empty line steps again, as in pdb)
     done = _run(folder, "--debug", "--summary", "stepped.json", commands=commands, program="nobreak.py")
     assert done.returncode == 0, done.stderr
     out = done.stdout

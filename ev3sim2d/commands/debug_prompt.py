@@ -19,6 +19,7 @@ from ..grading.safe_text import one_line
 from ..simulator.run import shown_file
 
 HELP = """\
+(an empty line)   the last command again
 s(tep)            run the current line, stopping in the first function it calls
 n(ext)            run the current line, stopping at the next one here
 r(eturn)          run on until the current function returns
@@ -43,6 +44,7 @@ class DebugPrompt:
         self.stdin = stdin or sys.stdin
         self.stdout = stdout or sys.stdout
         self.breakpoints: list[dict] = []
+        self.last = ""  # the last command typed
 
     def __call__(self, index: int, shown: str, real: str, event: dict) -> dict:
         self._show(index, shown, real, event)
@@ -53,7 +55,9 @@ class DebugPrompt:
             if not line:  # the end of the input: the program goes on
                 self.stdout.write("\n")
                 return {"cmd": "continue"}
-            command = self._command(line.strip(), shown, real)
+            typed = line.strip() or self.last  # (an empty line repeats the last command, as in pdb)
+            self.last = typed
+            command = self._command(typed, shown, real)
             if command is not None:
                 return command
 
