@@ -1,9 +1,9 @@
 """Packaging: setup.cfg says it all, except that a wheel carries the shipped worlds, lessons and the shim.
 
-The repository keeps `mazes/` and the `ev3dev2/` shim at its top level (for people to find and
-edit). Installing them as top-level packages would shadow a real python-ev3dev2, so a wheel gets
-them inside ev3sim2d instead, as `ev3sim2d/_mazes/`, `_lessons/` and `_shim/ev3dev2/`, where only a
-simulated run looks; the example programs go in as `ev3sim2d/_examples/`, for `ev3sim2d examples` to
+The repository keeps `mazes/` and the `ev3dev2/` and `pybricks/` shims at its top level (for people
+to find and edit). Installing them as top-level packages would shadow a real python-ev3dev2, or the
+`pybricks` stubs editors complete from, so a wheel gets them inside ev3sim2d instead, as
+`ev3sim2d/_mazes/`, `_lessons/`, `_shim/ev3dev2/` and `_shim/pybricks/`, where only a simulated run looks; the example programs go in as `ev3sim2d/_examples/`, for `ev3sim2d examples` to
 copy out. An editable install reads them from the repository directly.
 
 A wheel is what students install, so its lessons are what students may read: each lesson's `hidden/`
@@ -40,12 +40,13 @@ class BuildWithWorldsAndShim(build_py):
         shutil.copytree(
             ROOT / "examples", target / "_examples", ignore=shutil.ignore_patterns("__pycache__", "*.pyc")
         )
-        shutil.copytree(
-            ROOT / "ev3dev2",
-            target / "_shim" / "ev3dev2",
-            dirs_exist_ok=True,
-            ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
-        )
+        for shim in ("ev3dev2", "pybricks"):
+            shutil.copytree(
+                ROOT / shim,
+                target / "_shim" / shim,
+                dirs_exist_ok=True,
+                ignore=shutil.ignore_patterns("__pycache__", "*.pyc"),
+            )
 
 
 setup(cmdclass={"build_py": BuildWithWorldsAndShim})

@@ -16,6 +16,7 @@ import types
 from _thread import get_ident
 from importlib.machinery import PathFinder, SourceFileLoader
 
+from .program_kind import ProgramKind
 from .scheduler import SWITCH_US, Scheduler
 
 # What a line of a program's own code costs the brick, in virtual microseconds.  Measured on an EV3 with
@@ -44,9 +45,13 @@ class CpuTime:
 
     LINE = "__ev3sim2d_line__"  # the function called before each statement (in builtins)
 
-    def __init__(self, scheduler: Scheduler, folders: list[str], outside: list[str]) -> None:
-        """folders: the program's; outside: folders within them that are not the program's (the shims)."""
+    def __init__(
+        self, scheduler: Scheduler, folders: list[str], outside: list[str], kind: ProgramKind | None = None
+    ) -> None:
+        """folders: the program's; outside: folders within them that are not the program's (the shims);
+        kind: checks that each module of the program imports the program's shim (program_kind.py)."""
         self.scheduler = scheduler
+        self.kind = kind
         self.folders = tuple(_folder(f) for f in folders)
         self.outside = tuple(_folder(f) for f in outside)
         self._mine: dict[str, bool] = {}  # file name -> whether it is the program's
@@ -102,7 +107,11 @@ class _CountedLoader(SourceFileLoader):
         self.cpu = cpu
 
     def get_code(self, fullname: str) -> types.CodeType:
-        return self.cpu.compile(self.get_data(self.path), self.path)
+        code = self.cpu.compile(self.get_data(self.path), self.path)
+        mixed = self.cpu.kind.check(code, self.path) if self.cpu.kind is not None else None
+        if mixed is not None:
+            raise ImportError(mixed[1], name=fullname, path=self.path)
+        return code
 
 
 class Lines(ast.NodeTransformer):

@@ -29,6 +29,7 @@ from .debugger import BrickDebugger
 from .environment import BrickEnvironment, _real_start_new_thread
 from .link import BrickLink
 from .program import Program, ending, error_report
+from .program_kind import ProgramKind
 from .scheduler import Scheduler
 
 _monotonic = time.monotonic  # the real clock (the program's is virtual)
@@ -49,6 +50,9 @@ SHIM_MODULES = (
     "ev3dev2.unit",
     "ev3dev2.wheel",
     "ev3dev2.stopwatch",
+    "pybricks",
+    "pybricks._link",
+    "pybricks.parameters",
 )
 
 
@@ -76,7 +80,8 @@ class BrickRun:
         self.env.install()
         for name in SHIM_MODULES:
             importlib.import_module(name)
-        importlib.import_module("ev3dev2._link").connect(self.link)
+        for shim in SHIMS:
+            importlib.import_module(shim + "._link").connect(self.link)
         gc.freeze()  # the runtime and the shim: the program's collections need not look at them
 
     def _forked(self) -> None:
@@ -102,6 +107,8 @@ class BrickRun:
             report["file"] = report["file"] or self.program_path  # (a source too deep has no line)
             self._end({"t_us": 0, "status": "error", "error": report})
             return
+        if not self._one_shim(program):
+            return
         self._count_lines(program)
         body = self._debugging(program.run)
         task = s.spawn("robot", None, self.env.main_body(body), _real_start_new_thread, main=True)
@@ -113,6 +120,27 @@ class BrickRun:
         if self.link.stopped:
             how["status"] = "stopped"
         self._end(how)
+
+    def _one_shim(self, program: Program) -> bool:
+        """The program's file imports one shim, not both (program_kind.py): else it ends before it starts,
+        with the error at the import that disagrees.  A program that is not python-ev3dev2's finds
+        MicroPython's module names (utime, urandom, uerrno...) as EV3 MicroPython has them."""
+        self.kind = ProgramKind()
+        mixed = self.kind.check(program.code, self.program_path)
+        if mixed is not None:
+            line, message = mixed
+            where = f'  File "{self.program_path}", line {line}, in <module>\n'
+            report = {"type": "ImportError", "message": message, "file": self.program_path, "line": line}
+            report |= {
+                "t_s": 0.0,
+                "traceback": f"Traceback (most recent call last):\n{where}ImportError: {message}",
+            }
+            self._end({"t_us": 0, "status": "error", "error": report})
+            return False
+        if self.kind.shim != "ev3dev2":
+            shim_root = self.config.get("shim_root") or os.path.dirname(PACKAGE_DIR)
+            sys.path.append(os.path.join(shim_root, "pybricks", "_micropython"))
+        return True
 
     def _count_lines(self, program: Program) -> None:
         """From now on the program's lines cost time: its file compiled again to count them, and its modules
@@ -155,7 +183,7 @@ class BrickRun:
             os.path.dirname(os.__file__),  # the standard library
             *self.config.get("site_packages", ()),
         ]
-        return CpuTime(self.scheduler, self.config.get("program_dirs", []), outside)
+        return CpuTime(self.scheduler, self.config.get("program_dirs", []), outside, self.kind)
 
     def _watch(self) -> bool:
         """Wait for the end of the run; True once it has ended.  False if this thread answered the simulator's

@@ -174,8 +174,12 @@ def _wait_for_exit(popen: subprocess.Popen, timeout_s: float) -> None:
         pass
 
 
+SHIMS = ("ev3dev2", "pybricks")  # the APIs a brick's program may import (brick/program_kind.py)
+
+
 def shim_root() -> Path:
-    """The folder that holds our `ev3dev2` package (installed copy first, then the source tree)."""
+    """The folder that holds our `ev3dev2` and `pybricks` packages (installed copy first, then the source
+    tree)."""
     for root in (PACKAGE_DIR / "_shim", PACKAGE_DIR.parent):
         if (root / "ev3dev2" / "__init__.py").exists():
             return root
@@ -198,7 +202,7 @@ def compile_brick_code() -> None:
     if _compiled:
         return
     _compiled = True
-    for folder in (PACKAGE_DIR / "brick", PACKAGE_DIR / "protocol", shim_root() / "ev3dev2"):
+    for folder in (PACKAGE_DIR / "brick", PACKAGE_DIR / "protocol", *(shim_root() / s for s in SHIMS)):
         try:
             compileall.compile_dir(str(folder), quiet=2)
         except OSError:
@@ -377,7 +381,7 @@ def start_brick(
     if brick.job is None:  # (a Job Object limits its processes' memory together itself)
         brick.memory = memory_watch.watch(brick.popen.pid, limits.memory_mb)
     originals = [str(p) for p in readable] if working is None else []
-    return brick, [str(shim_root() / "ev3dev2"), *originals]
+    return brick, [*(str(shim_root() / s) for s in SHIMS), *originals]
 
 
 def _boot_argv(*arguments: str, scratch: Path) -> list[str]:
