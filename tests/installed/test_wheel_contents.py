@@ -35,3 +35,15 @@ def test_the_wheel_holds_the_worlds_robots_and_examples_a_user_starts_with(insta
     for lesson in (ROOT / "lessons").glob("*/lesson.yaml"):
         for student_file in ("lesson.yaml", "README.md", "starter.py"):
             assert f"ev3sim2d/_lessons/{lesson.parent.name}/{student_file}" in names
+
+
+def test_the_wheel_installs_no_top_level_shim_only_its_copies_for_the_bricks(installed):
+    """A student's Python keeps its own `pybricks` (LEGO's stubs, for an editor's completion) and its own
+    python-ev3dev2: the wheel puts both shims under ev3sim2d/_shim/, where only a brick looks."""
+    names = zipfile.ZipFile(installed.wheel).namelist()
+    assert {name.split("/")[0] for name in names if not name.split("/")[0].endswith(".dist-info")} == {
+        "ev3sim2d"
+    }
+    for shim in ("ev3dev2", "pybricks"):
+        for path in (ROOT / shim).rglob("*.py"):
+            assert f"ev3sim2d/_shim/{path.relative_to(ROOT).as_posix()}" in names
