@@ -72,7 +72,7 @@ def test_programs_of_either_kind_run_with_their_own_shim(run):
     ev3dev2 = run("from ev3dev2.motor import OUTPUT_B\nprint(OUTPUT_B)")
     pybricks = run("from pybricks.parameters import Color\nprint(Color.RED)")
     assert ev3dev2.status == pybricks.status == "finished"
-    assert (ev3dev2.trace.output[0].text, pybricks.trace.output[0].text) == ("outB", "Color.RED")
+    assert (ev3dev2.trace.output[0].text, pybricks.trace.output[0].text) == ("ev3-ports:outB", "Color.RED")
 
 
 def test_a_pybricks_installed_beside_for_the_editor_is_not_shadowed(run, tmp_path, monkeypatch):
