@@ -64,15 +64,20 @@ class TouchSensor(_sensor.Sensor):
     _DRIVERS = ("lego-ev3-touch",)
 
     def pressed(self):
-        """True while the sensor is pressed (the TOUCH reading's millivolts above 250, as the firmware
-        tests them)."""
-        return _sensor.value(self._record, "TOUCH") > 250
+        """True while the sensor is pressed.
+
+        The firmware reads TOUCH's bin_data, on a brick the sensor's millivolts, and tests it against
+        250 as the driver does (modev3devices.c TouchSensor_pressed).  The simulated sensor's bin_data
+        holds value0 itself, 0 or 1 (docs/fidelity.md, lego-ev3-touch-bin-data), so the test here is
+        above 0, which gives the same answer for either."""
+        return _sensor.value(self._record, "TOUCH") > 0
 
 
 class ColorSensor(_sensor.Sensor):
     """LEGO MINDSTORMS EV3 Color Sensor."""
 
     _DRIVERS = ("lego-ev3-color",)
+    _SWITCH_DELAY_MS = 30  # pbdevice.c get_mode_switch_delay
 
     def reflection(self):
         """Reflected red light, 0 (no reflection) to 100 (high reflection): an int."""
@@ -102,6 +107,7 @@ class InfraredSensor(_sensor.Sensor):
     """LEGO MINDSTORMS EV3 Infrared Sensor and Beacon."""
 
     _DRIVERS = ("lego-ev3-ir",)
+    _SWITCH_DELAY_MS = 1100  # pbdevice.c get_mode_switch_delay
 
     def distance(self):
         """Relative distance to the nearest object, 0 (closest) to 100 (farthest): an int."""
@@ -142,7 +148,10 @@ class UltrasonicSensor(_sensor.Sensor):
     def distance(self, silent=False):
         """Distance to the nearest object in mm (an int).  silent=True takes a single measurement (US-SI-CM,
         the mode written again on every call) and leaves the sensor quiet."""
-        return _sensor.value(self._record, "US-SI-CM" if silent else "US-DIST-CM")
+        if silent:  # pbdevice.c get_values writes a single-measurement mode even when it is set already
+            _sensor.switch(self._record, "US-SI-CM")
+            return _sensor.value(self._record, "US-SI-CM")
+        return _sensor.value(self._record, "US-DIST-CM")
 
     def presence(self):
         """True if the sensor hears another ultrasonic sensor."""

@@ -21,29 +21,19 @@ CLASS = "lego-sensor"
 # lego_sensor.c lego_sensor_get_info: the driver's bin_data_format -> how each value is stored
 _FORMATS = {"u8": "B", "s8": "b", "u16": "H", "s16": "h", "s32": "i", "u32": "I", "s16_be": "h", "float": "f"}
 
-# pbdevice.c get_mode_switch_delay: milliseconds waited after a mode switch, by driver (0 for the others)
-SWITCH_DELAY_MS = {
-    "lego-ev3-color": 30,
-    "lego-ev3-ir": 1100,
-    "lego-nxt-light": 20,
-    "lego-nxt-sound": 300,
-    "nxt-analog": 300,  # (an NXT sound sensor without auto-detection is an nxt-analog)
-    "lego-power-storage": 200,
-}
-
 
 class _PortRecord:
     """pbdevice.c `pbdevice_t`: the sensor on one port, its current mode and how to unpack its data."""
 
     __slots__ = ("device", "driver", "modes", "mode", "unpack", "delay_s")
 
-    def __init__(self, device, driver, modes):
+    def __init__(self, device, driver, modes, delay_ms):
         self.device = device
         self.driver = driver
         self.modes = modes
         self.mode = ""
         self.unpack = None
-        self.delay_s = SWITCH_DELAY_MS.get(driver, 0) / 1000
+        self.delay_s = delay_ms / 1000
 
     def read_info(self):
         """lego_sensor_get_info: the current mode's number of values and data format."""
@@ -54,31 +44,32 @@ class _PortRecord:
 
 
 def find(port, drivers):
-    """(sysfs name, driver) of the sensor of one of `drivers` on `port`: _device.find, keeping the driver
-    name it read (lego_sensor.c ev3_sensor_get_id reads it once)."""
+    """(sysfs name, driver) of the sensor of one of `drivers` (None: any) on `port`: _device.find, keeping
+    the driver name it read (lego_sensor.c ev3_sensor_get_id reads it once)."""
     name = _device.port_name(port, False)
     for device in _link.list_device_names(CLASS, "*", address="ev3-ports:" + name):
         driver = _link.read(CLASS, device, "driver_name").strip()
-        if driver in drivers:
+        if drivers is None or driver in drivers:
             return device, driver
-    raise OSError(
-        ENODEV, f"ENODEV: no {' or '.join(drivers)} on {port} ({name}); check the robot file's ports"
-    )
+    wanted = "sensor" if drivers is None else " or ".join(drivers)
+    raise OSError(ENODEV, f"ENODEV: no {wanted} on {port} ({name}); check the robot file's ports")
 
 
 _PORTS = {}  # sensor port name ("in1") -> its _PortRecord, shared by every object on that port
 
 
-def open_port(port, drivers):
+def open_port(port, drivers, delay_ms=0):
     """The record of the sensor of one of `drivers` on `port` (pbdevice_get_device): OSError(ENODEV) if
-    there is none, ValueError for a motor port.  Reads the mode it is in now, as the firmware does; two
+    there is none, ValueError for a motor port.  `delay_ms`: what the firmware waits after a mode switch for
+    the kind of sensor the class asks for (pbdevice.c get_mode_switch_delay).  Reads the mode it is in now, as the firmware does; two
     objects on one port share one record, as they share the firmware's."""
     device, driver = find(port, drivers)
     modes = tuple(_link.read(CLASS, device, "modes").split())
     name = _device.port_name(port, False)
     record = _PORTS.get(name)
     if record is None or record.device != device:
-        record = _PORTS[name] = _PortRecord(device, driver, modes)
+        record = _PORTS[name] = _PortRecord(device, driver, modes, delay_ms)
+    record.delay_s = delay_ms / 1000
     record.mode = _link.read(CLASS, device, "mode").strip()
     record.read_info()
     return record
@@ -115,9 +106,28 @@ def value(record, mode):
 
 
 class Sensor:
-    """A sensor class of the firmware: one port record, found when the object is made."""
+    """A sensor class of the firmware: one port record, found when the object is made.  A class says the
+    drivers it accepts (lego_sensor.c ev3_sensor_assert_id) and its mode-switch delay."""
 
     _DRIVERS = ()
+    _SWITCH_DELAY_MS = 0
 
     def __init__(self, port):
-        self._record = open_port(port, self._DRIVERS)
+        self._record = open_port(port, self._DRIVERS, self._SWITCH_DELAY_MS)
+
+
+def mode_by_index(record, index):
+    """The name of mode number `index` (the firmware's modes are numbers into the driver's list of modes);
+    ValueError for a number the sensor has no mode for (lego_sensor_set_mode: PBIO_ERROR_INVALID_ARG)."""
+    if not isinstance(index, int):
+        raise TypeError(f"can't convert {type(index).__name__} to int")
+    if index < 0 or index >= len(record.modes):
+        raise ValueError("Invalid argument")
+    return record.modes[index]
+
+
+def absent(port, what):
+    """OSError(ENODEV) for a device the simulator cannot have on `port` (ValueError for a motor port first,
+    as the firmware checks the port before looking)."""
+    name = _device.port_name(port, False)
+    raise OSError(ENODEV, f"ENODEV: no {what} on {port} ({name}); ev3sim2d cannot simulate one")
