@@ -133,9 +133,10 @@ class UARTDevice:
 
 def __getattr__(name):
     if name == "DCMotor":  # (the motor module's: modmotor.c motor_DCMotor_type)
-        from ._motor import DCMotor
+        from . import _motor
 
-        return DCMotor
+        if hasattr(_motor, "DCMotor"):
+            return _motor.DCMotor
     raise AttributeError(f"module 'pybricks.iodevices' has no attribute {name!r}")
 
 
