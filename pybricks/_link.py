@@ -66,3 +66,9 @@ def poll(class_name, device_name, attribute, timeout_ms):
 def call(feature, *args):
     """Brick features that are not sysfs attributes (sound, buttons, the LCD, messaging)."""
     return _require().call(feature, *args)
+
+
+def tick_us() -> int:
+    """The world's step in virtual microseconds: writes made within one step take effect together, as
+    the firmware's control loop starts both wheels of a drive base in one step."""
+    return _require().tick_us

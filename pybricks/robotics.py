@@ -183,7 +183,7 @@ class DriveBase:
         step starts both.  The simulated world takes in writes tick by tick, so when the two would fall
         into different ticks the program first waits for the next tick (at most one write's time)."""
         if all(commands):
-            tick_us = getattr(_link._backend, "tick_us", 10_000)
+            tick_us = _link.tick_us()
             into_tick_us = round(_time.time() * 1_000_000) % tick_us
             if into_tick_us + _WRITE_US >= tick_us:
                 _time.sleep((tick_us - into_tick_us) / 1_000_000)
