@@ -1,0 +1,3 @@
+"""MicroPython's `ucollections`: namedtuple, OrderedDict, deque (CPython's collections)."""
+
+from collections import OrderedDict, deque, namedtuple  # noqa: F401

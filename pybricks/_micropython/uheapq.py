@@ -1,0 +1,3 @@
+"""MicroPython's `uheapq`: heappush, heappop, heapify (CPython's heapq)."""
+
+from heapq import heapify, heappop, heappush  # noqa: F401

@@ -1,0 +1,3 @@
+"""MicroPython's `ure`: compile, match, search, sub (CPython's re, which knows more syntax)."""
+
+from re import DEBUG, compile, match, search, sub  # noqa: F401
