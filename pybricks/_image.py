@@ -251,9 +251,7 @@ class Image:
         width, height = _as_int(width), _as_int(height)
         if width <= 0 or height <= 0:
             raise ValueError("width and height must be greater than 0")
-        image = Image.__new__(Image)
-        Image.__init__(image, Image._blank(width, height))
-        return image
+        return Image(Image._blank(width, height))
 
     @classmethod
     def _blank(cls, width, height):
