@@ -425,3 +425,27 @@ def test_ev3brick_the_1_0_module(run):
     end = last_frame(result)
     assert (end[0:12] == 0).any() and (end[8:20] == 0).any() and (end[30:] == 255).all()
     assert events(result, "leds")[-1][3]["led1:green:brick-status"] == 255
+
+
+def test_a_run_that_draws_and_plays_repeats_exactly(run):
+    """The same program twice: the same LCD frames, sounds, LED changes and printed lines (the trace's
+    fingerprint), as every clock the shim reads is the virtual one (DataLog's stamp too)."""
+    program = """
+        from pybricks.hubs import EV3Brick
+        from pybricks.parameters import Color
+        from pybricks.tools import DataLog, StopWatch, wait
+        ev3 = EV3Brick()
+        watch = StopWatch()
+        log = DataLog("t")
+        for n in range(5):
+            ev3.screen.print("n =", n)
+            ev3.screen.draw_circle(120, 60, 5 * n)
+            ev3.speaker.play_notes(["C4/16", "E4/16"], tempo=240)
+            ev3.light.on(Color.GREEN if n % 2 else Color.RED)
+            log.log(watch.time())
+            wait(30)
+        print(repr(log).split())
+        """
+    first, second = check_ok(run(program)), check_ok(run(program))
+    assert first.trace.fingerprint() == second.trace.fingerprint()
+    assert len(first.trace.lcd_frames) >= 5
