@@ -51,6 +51,8 @@ FIND_US = 2_000  # looking a device up when it is constructed
 # Reading the brick's buttons: python-ev3dev2 2.1.0's Button.buttons_pressed is one ioctl, then a loop over
 # the six buttons (about 24 lines, 0.65 ms at cpu_time.LINE_US): about 1 ms.
 BUTTONS_US = 1_000
+# A mailbox request of pybricks.messaging (a lock, a dict, a socket's send): about 0.3 ms of MicroPython.
+MAILBOX_US = 300
 
 HEARTBEAT_S = 0.5  # real seconds between two messages at most, while the clock moves
 _perf_counter = time.perf_counter  # the real clock (the program's is virtual)
@@ -367,9 +369,27 @@ class BrickLink:
             if not args:  # (["wait"] asks the simulator whether a press is to come: no EV3 does that)
                 self.scheduler.spend(BUTTONS_US)
             return answer
+        if feature == "mailbox":  # pybricks.messaging: Bluetooth between bricks (simulator/mailboxes.py)
+            return self._mailbox(list(args))
         if feature == "debug":  # (brick/debugger.py: an event, answered by the front end's command)
             return self._call(True, "debug", [args[0]])
         raise ValueError(f"the simulated brick has no feature {feature!r}")
+
+    def _mailbox(self, args: list):
+        """A mailbox request; ["until", request...] asks again each tick (virtual time) until the answer is
+        not None, as a blocked socket would wait."""
+        if args and args[0] == "until":
+            answers = [None]
+
+            def answered() -> bool:
+                answers[0] = self._call(True, "mailbox", args[1:])
+                return answers[0] is not None
+
+            self.scheduler.wait(answered, None)
+            return answers[0]
+        answer = self._call(True, "mailbox", args)
+        self.scheduler.spend(MAILBOX_US)
+        return answer
 
     def _call(self, answered: bool, feature: str, args: list):
         now = self.scheduler.now_us

@@ -260,6 +260,7 @@ class BrickPort:
         self.debugged = False  # it asked since the session last looked: a stop is not a hang
         self._answers: list = []  # answers to the ops of the batch being applied
         self.broken = False  # a send failed: the brick is gone once what it sent is applied
+        self.mailboxes = None  # the session's Bluetooth between bricks (mailboxes.py), once it has one
 
     # What is kept of the brick's first and last words: what the result reads of them, cut short.
     @property
@@ -582,6 +583,8 @@ class BrickPort:
                     "run with --press enter@2.0 (BUTTON@SECONDS), or add `buttons: [enter@2.0]` to the world file"
                 )
             return pressed
+        if feature == "mailbox" and self.mailboxes is not None:  # pybricks.messaging (mailboxes.py)
+            return self.mailboxes.call(self, args)
         raise ValueError(f"no feature {feature[:50]!r}")
 
     def _lcd(self, now_s: float, pixels: bytes) -> None:

@@ -36,6 +36,7 @@ from collections.abc import Callable
 from ..protocol import ConnectionGone, ProtocolError, wait_for_any
 from ..protocol.stream import cores_idle
 from .brick_port import BrickPort, OverBudget, said_threads
+from .mailboxes import Mailboxes
 from .simulation import Simulation
 
 _perf_counter = time.perf_counter
@@ -83,6 +84,7 @@ class Session:
         self.where: dict[int, list] = {}  # robot index -> [thread, file, line] of its program's threads
         for port in ports:
             port.time_limit_us = limit_us
+        Mailboxes(ports, sim.tick_us)  # (Bluetooth between these bricks: port.mailboxes)
 
     def _step_to(self, target_us: int) -> None:
         """Run the world's ticks up to target_us; after each, the snapshots bricks will need."""
