@@ -697,3 +697,46 @@ class Motor:
 
 
 _CLAIMED = []  # the motors the drive base holds (the firmware's one drive base: motorpoll.c)
+
+
+class DCMotor:
+    """A motor driven by duty cycle only, without its encoder (pybricks.iodevices.DCMotor; extmod/modmotor.c
+    motor_DCMotor_type): on an EV3 any motor on an output port, here one of the robot's EV3 motors."""
+
+    def __init__(self, port, positive_direction=Direction.CLOCKWISE):
+        """modmotor.c motor_DCMotor_make_new: find the motor (pbio_dcmotor_get), and coast it."""
+        if positive_direction is Direction.CLOCKWISE:
+            self._sign = 1
+        elif positive_direction is Direction.COUNTERCLOCKWISE:
+            self._sign = -1
+        else:
+            raise TypeError("positive_direction must be a Direction")
+        self._port = port
+        self._name = _device.find(port, "tacho-motor", DRIVERS, motor=True)
+        self._direct = False
+        self.stop()
+
+    def __repr__(self):
+        direction = "clockwise" if self._sign == 1 else "counterclockwise"
+        return f"Motor properties:\n------------------------\nPort\t\t {self._port.name[-1]}\nPositive dir.\t {direction}"
+
+    def dc(self, duty):
+        """Run at `duty` % (-100..100) of the battery's voltage (pbio_dcmotor_set_duty_cycle_usr)."""
+        duty = max(-100, min(get_int(duty), 100))
+        _link.write("tacho-motor", self._name, "duty_cycle_sp", str(self._sign * duty))
+        if not self._direct:
+            _link.write("tacho-motor", self._name, "command", "run-direct")
+            self._direct = True
+
+    def stop(self):
+        """Coast: the motor rolls out freely (pbio_dcmotor_coast)."""
+        self._halt("coast")
+
+    def brake(self):
+        """Brake passively: the motor's terminals shorted (pbio_dcmotor_brake)."""
+        self._halt("brake")
+
+    def _halt(self, action: str) -> None:
+        _link.write("tacho-motor", self._name, "stop_action", action)
+        _link.write("tacho-motor", self._name, "command", "stop")
+        self._direct = False

@@ -10,6 +10,7 @@ OSError(ENODEV).  DCMotor is the motor module's (pybricks/_motor.py).
 from errno import EOPNOTSUPP
 
 from . import _sensor
+from ._motor import DCMotor  # noqa: F401 - (modmotor.c motor_DCMotor_type, listed in modiodevices.c)
 
 # the drivers of EV3 UART sensors (LUMP): lego_port.c configures the port as ev3-uart for a LUMPDevice
 _UART_DRIVERS = ("lego-ev3-color", "lego-ev3-us", "lego-ev3-gyro", "lego-ev3-ir")
@@ -131,13 +132,4 @@ class UARTDevice:
         """Throw away the bytes waiting."""
 
 
-def __getattr__(name):
-    if name == "DCMotor":  # (the motor module's: modmotor.c motor_DCMotor_type)
-        from . import _motor
-
-        if hasattr(_motor, "DCMotor"):
-            return _motor.DCMotor
-    raise AttributeError(f"module 'pybricks.iodevices' has no attribute {name!r}")
-
-
-__all__ = ["LUMPDevice", "AnalogSensor", "I2CDevice", "UARTDevice", "Ev3devSensor"]  # (and DCMotor)
+__all__ = ["LUMPDevice", "AnalogSensor", "I2CDevice", "UARTDevice", "Ev3devSensor", "DCMotor"]

@@ -53,7 +53,23 @@ SHIM_MODULES = (
     "pybricks",
     "pybricks._link",
     "pybricks.parameters",
-)
+    "pybricks._sensor",
+    "pybricks._ev3_sensors",
+    "pybricks._motor",
+    "pybricks.ev3devices",
+    "pybricks.nxtdevices",
+    "pybricks.iodevices",
+    "pybricks.robotics",
+    "pybricks.tools",
+    "pybricks._image",  # (reads its fonts when imported: before the sandbox)
+    "pybricks._speaker",
+    "pybricks.hubs",
+    "pybricks.media",
+    "pybricks.media.ev3dev",
+    "pybricks.speaker",
+    "pybricks.display",
+    "pybricks.messaging",
+)  # (not pybricks.ev3brick: importing it makes an EV3Brick and clears the screen, as on a brick)
 
 
 class BrickRun:

@@ -208,3 +208,45 @@ print('stalled', m.stalled())
     out = output(result)
     assert out["limits"] == ["500", "1000", "100"]
     assert out["busy"] == ["1"] and out["stalled"] == ["False"]
+
+
+def test_a_dc_motor_runs_by_duty_cycle_only_and_is_found_like_a_motor(run):
+    """extmod/modmotor.c motor_DCMotor_type (listed by modiodevices.c for the EV3): dc(duty) drives the
+    motor without speed control, stop() coasts and brake() shorts it (pbio_dcmotor_coast / _brake);
+    nothing on the port is ENODEV, a sensor port ValueError."""
+    result = run(
+        HEADER
+        + """
+from errno import ENODEV
+from pybricks.iodevices import DCMotor
+motor, counter = DCMotor(Port.B), Motor(Port.B)
+motor.dc(50)
+time.sleep(1)
+print('ran', counter.angle())
+motor.brake()
+time.sleep(0.5)
+print('braked', counter.angle())
+time.sleep(0.5)
+print('still', counter.angle())
+counter_c = Motor(Port.C)  # (a Motor counts from 0 where it is made)
+backwards = DCMotor(Port.C, Direction.COUNTERCLOCKWISE)
+backwards.dc(20)
+time.sleep(1)
+backwards.stop()
+print('backwards', counter_c.angle() < -150)
+try:
+    DCMotor(Port.D)
+except OSError as e:
+    print('missing', e.args[0] == ENODEV)
+try:
+    DCMotor(Port.S1)
+except ValueError:
+    print('sensor-port', True)
+"""
+    )
+    out = output(result)
+    ran = int(out["ran"][0])
+    assert abs(ran - 0.5 * 1050) < 0.03 * 525  # half of the driver's max_speed for about a second
+    braked = int(out["braked"][0])
+    assert 0 <= braked - ran < 15 and out["still"] == [str(braked)]  # stopped within the brake's writes
+    assert out["backwards"] == out["missing"] == out["sensor-port"] == ["True"]
