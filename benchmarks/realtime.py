@@ -10,7 +10,10 @@
 (d) the same program run the way ev3sim2d ran it before bricks existed, in the simulator's own
     process (the code of commit old_code.IN_PROCESS_COMMIT, taken from git), for the ratio (b)/(d);
 (e) the same program in its sandboxed brick on the portable path (EV3SIM2D_PORTABLE=1: the brick
-    connects over loopback TCP, as on Windows, with no shared memory), for the ratio (e)/(b).
+    connects over loopback TCP, as on Windows, with no shared memory), for the ratio (e)/(b);
+(f) the same line follower written against the Pybricks shim (examples/pybricks/line_follower.py: a
+    DriveBase's drive() and a ColorSensor's reflection() each time round), in its sandboxed brick, for
+    the ratio (f)/(b): the two shims should cost the same (target: within 20 %).
 
 Target: (b) at least 300x real time.  Each figure is the best of --repeat runs; the machine is
 shared, so the figures move with its load: compare the ratios of one run.
@@ -36,6 +39,7 @@ from ev3sim2d.world.maze_file import find_maze, load_maze
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLLOWER = ROOT / "examples" / "line_follower.py"
+PYBRICKS_FOLLOWER = ROOT / "examples" / "pybricks" / "line_follower.py"
 
 IN_PROCESS_RUN = """
 import sys
@@ -74,12 +78,14 @@ def world_alone(world, seconds: float) -> float:
     return seconds / (time.perf_counter() - start)
 
 
-def line_follower(world, seconds: float, sandbox: bool = True, portable: bool = False) -> float:
-    """Real-time factor of the shim line follower in its brick (simulation wall time, not start-up)."""
+def line_follower(
+    world, seconds: float, sandbox: bool = True, portable: bool = False, program: Path = FOLLOWER
+) -> float:
+    """Real-time factor of a shim's line follower in its brick (simulation wall time, not start-up)."""
     previous = os.environ.get(PORTABLE)
     os.environ[PORTABLE] = "1" if portable else "0"
     try:
-        result = run_programs([FOLLOWER], world, time_limit_s=seconds, sandbox=sandbox)
+        result = run_programs([program], world, time_limit_s=seconds, sandbox=sandbox)
     finally:
         if previous is None:
             del os.environ[PORTABLE]
@@ -117,14 +123,17 @@ def main() -> None:
     c = max(line_follower(world, args.seconds, sandbox=False) for _ in range(args.repeat))
     d = in_process(args.seconds, args.repeat)
     e = max(line_follower(world, args.seconds, portable=True) for _ in range(args.repeat))
+    f = max(line_follower(world, args.seconds, program=PYBRICKS_FOLLOWER) for _ in range(args.repeat))
     print(f"(a) world alone, 4 sensors read every tick:          {a:7.0f}x real time")
     print(f"(b) line follower in its sandboxed brick process:     {b:7.0f}x real time")
     print(f"(c) line follower in its brick, no sandbox:            {c:7.0f}x real time")
     if d is not None:
         print(f"(d) line follower in the simulator's process (old):    {d:7.0f}x real time")
     print(f"(e) line follower, portable path (loopback TCP):       {e:7.0f}x real time")
+    print(f"(f) Pybricks line follower in its sandboxed brick:    {f:7.0f}x real time")
     old = f"(b)/(d) = {b / d:.2f}   " if d is not None else ""
-    print(f"{old}(b)/(a) = {b / a:.2f}   (e)/(b) = {e / b:.2f}   target: (b) >= 300x")
+    print(f"{old}(b)/(a) = {b / a:.2f}   (e)/(b) = {e / b:.2f}   (f)/(b) = {f / b:.2f}")
+    print("targets: (b) >= 300x; (f)/(b) >= 0.8")
     print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.2f} (the figures move with it)")
 
 
