@@ -15,6 +15,8 @@ import ast
 import re
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 FRONT_DOORS = {"commands", "cli", "serve", "join", "simulate", "__main__", ""}  # "": the package itself
@@ -156,12 +158,15 @@ def test_the_grading_checks_registry_is_the_only_circle_and_is_there():
     assert len(found) == 1 and all(m.startswith(ALLOWED_CIRCLE_PREFIXES) for m in found[0])
 
 
-def test_the_shim_imports_nothing_of_ev3sim2d():
-    """A student's program imports the shim on the brick; it reaches the simulator only through the
-    backend the brick connects (ev3dev2/_link.py)."""
-    graph = read_imports(ROOT, "ev3dev2")
+@pytest.mark.parametrize("shim", ["ev3dev2", "pybricks"])
+def test_the_shim_imports_nothing_of_ev3sim2d_nor_of_the_other_shim(shim):
+    """A student's program imports a shim on the brick; it reaches the simulator only through the
+    backend the brick connects (ev3dev2/_link.py, pybricks/_link.py), and a program gets one shim, never
+    both (brick/program_kind.py), so neither leans on the other."""
+    graph = read_imports(ROOT, shim)
     assert len(graph) > 10
-    for path in sorted((ROOT / "ev3dev2").rglob("*.py")):
+    forbidden = {"ev3sim2d", *({"ev3dev2", "pybricks"} - {shim})}
+    for path in sorted((ROOT / shim).rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             names = (
                 [a.name for a in node.names]
@@ -170,14 +175,14 @@ def test_the_shim_imports_nothing_of_ev3sim2d():
                 if isinstance(node, ast.ImportFrom) and not node.level
                 else []
             )
-            assert not any(n.split(".")[0] == "ev3sim2d" for n in names), f"{path}: imports {names}"
+            assert not any(n.split(".")[0] in forbidden for n in names), f"{path}: imports {names}"
 
 
 def test_readme_names_every_folder_of_the_tree_in_its_layout_section():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     section = readme.split("## How the code is laid out", 1)[1].split("\n## ", 1)[0]
     folders = {path.parent.name for path in (ROOT / "ev3sim2d").glob("*/__init__.py")}
-    assert set(re.findall(r"`(\w+)/`", section)) == folders | {"ev3sim2d", "ev3dev2"}
+    assert set(re.findall(r"`(\w+)/`", section)) == folders | {"ev3sim2d", "ev3dev2", "pybricks"}
     front_door_files = {part for part in FRONT_DOORS if (ROOT / "ev3sim2d" / f"{part}.py").is_file()}
     assert {f"{name}.py" for name in front_door_files - {"__main__"}} <= set(
         re.findall(r"`(\w+\.py)`", section)
