@@ -7,8 +7,9 @@ to find and edit). Installing them as top-level packages would shadow a real pyt
 copy out. An editable install reads them from the repository directly.
 
 A wheel is what students install, so its lessons are what students may read: each lesson's `hidden/`
-folder (the hidden variants and their worlds), its reference `solution.py` and its deliberately wrong
-programs (`wrong/`) stay in the repository, for teachers and the tests (tests/lessons/test_wheel.py).
+folder (the hidden variants and their worlds), its reference `solution.py` (and `solution_pybricks.py`, the
+same in Pybricks) and its deliberately wrong programs (`wrong/`) stay in the repository, for teachers
+and the tests (tests/lessons/test_wheel.py).
 """
 
 import shutil
@@ -18,7 +19,7 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 ROOT = Path(__file__).resolve().parent
-NOT_SHIPPED_FROM_LESSONS = ("hidden", "solution.py", "wrong", "__pycache__", "*.pyc")
+NOT_SHIPPED_FROM_LESSONS = ("hidden", "solution.py", "solution_pybricks.py", "wrong", "__pycache__", "*.pyc")
 
 
 class BuildWithWorldsAndShim(build_py):

@@ -1,7 +1,8 @@
 """A lesson: a task in one or more worlds (variants), and the checks that score it (lessons/<id>/lesson.yaml).
 
 The folder holds `lesson.yaml`, `README.md` (the task as a student reads it),
-`starter.py`, `solution.py`, world files the lesson needs, and optionally
+`starter.py`, `solution.py` (python-ev3dev2), `starter_pybricks.py`, `solution_pybricks.py` (the same in
+Pybricks 2.0, optional), world files the lesson needs, and optionally
 `check_*.py` files with check kinds of its own.  Its hidden variants live apart,
 in `hidden/hidden.yaml` with their world files (a folder a wheel never ships),
 or in a teacher's private copy named with `load_lesson(..., hidden=DIR)`
@@ -44,6 +45,8 @@ LESSON_KEYS = (
     "checks",
     "starter",
     "solution",
+    "starter_pybricks",
+    "solution_pybricks",
     "student_start",
     "others",
 )
@@ -87,6 +90,8 @@ class Lesson:
     limits: Limits = field(default_factory=Limits)
     starter: Path | None = None
     solution: Path | None = None
+    starter_pybricks: Path | None = None  # the same two in Pybricks 2.0 (LEGO's EV3 MicroPython)
+    solution_pybricks: Path | None = None
     text: str = ""
     hidden_file: Path | None = None  # where the hidden variants came from (None: no hidden variants)
     hidden_text: str = ""
@@ -305,6 +310,8 @@ def load_lesson(
         limits=limits,
         starter=_program(fields, "starter", folder),
         solution=_program(fields, "solution", folder),
+        starter_pybricks=_program(fields, "starter_pybricks", folder),
+        solution_pybricks=_program(fields, "solution_pybricks", folder),
         text=text,
         hidden_file=hidden_file,
         hidden_text=hidden_text,

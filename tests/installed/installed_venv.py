@@ -25,6 +25,7 @@ SOURCES = (
     "README.md",
     "ev3sim2d",
     "ev3dev2",
+    "pybricks",
     "mazes",
     "lessons",
     "examples",

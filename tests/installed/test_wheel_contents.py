@@ -7,7 +7,7 @@ from pathlib import Path
 
 from tests.installed.installed_venv import ROOT
 
-KEPT_FROM_STUDENTS = ("hidden", "hidden.yaml", "solution.py", "wrong")
+KEPT_FROM_STUDENTS = ("hidden", "hidden.yaml", "solution.py", "solution_pybricks.py", "wrong")
 
 
 def test_the_wheel_holds_no_hidden_variant_solution_or_wrong_program_anywhere(installed):
@@ -33,7 +33,7 @@ def test_the_wheel_holds_the_worlds_robots_and_examples_a_user_starts_with(insta
     for path in (ROOT / "examples").rglob("*.py"):
         assert f"ev3sim2d/_examples/{path.relative_to(ROOT / 'examples').as_posix()}" in names
     for lesson in (ROOT / "lessons").glob("*/lesson.yaml"):
-        for student_file in ("lesson.yaml", "README.md", "starter.py"):
+        for student_file in ("lesson.yaml", "README.md", "starter.py", "starter_pybricks.py"):
             assert f"ev3sim2d/_lessons/{lesson.parent.name}/{student_file}" in names
 
 

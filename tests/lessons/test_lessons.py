@@ -1,8 +1,10 @@
 """Every lesson of the repository, graded by the grader itself: the solution gets full marks in every
 variant (hidden ones too), each typical wrong program loses points on the check its docstring names
 (`Loses: check, check`), and a program that does not solve the task (one that does nothing, only prints,
-only spins on the spot, drives straight ahead for ever, or the starter) scores nothing.  Each lesson
-is graded once (all its programs, two at a time)."""
+only spins on the spot, drives straight ahead for ever, or the starter) scores nothing.  The same holds
+for the lesson's Pybricks 2.0 programs (starter_pybricks.py, solution_pybricks.py: LEGO's EV3
+MicroPython, which the brick runs with the pybricks shim).  Each lesson is graded once (all its
+programs, two at a time)."""
 
 import ast
 import re
@@ -44,7 +46,7 @@ DOES_NOT_SOLVE = {
     "spins_in_place.py": DRIVE.format(left=30, right=-30),
     "drives_straight_for_ever.py": DRIVE.format(left=30, right=30),
 }
-NOT_SOLVING = [*DOES_NOT_SOLVE, "starter"]
+NOT_SOLVING = [*DOES_NOT_SOLVE, "starter", "starter_pybricks"]
 _graded: dict[str, dict] = {}
 
 
@@ -77,11 +79,14 @@ def graded(lesson_id: str, not_solving: Path) -> dict:
     if lesson_id not in _graded:
         lesson = load_lesson(lesson_dir(lesson_id))
         trivial = [not_solving / name for name in DOES_NOT_SOLVE]
-        programs = [lesson.solution, lesson.starter, *wrong_programs(lesson_id), *trivial]
+        pybricks = [lesson.solution_pybricks, lesson.starter_pybricks]
+        programs = [lesson.solution, lesson.starter, *pybricks, *wrong_programs(lesson_id), *trivial]
         results = grade(lesson, find_submissions(programs), jobs=2).results
         names = [
             "solution",
             "starter",
+            "solution_pybricks",
+            "starter_pybricks",
             *[f"wrong/{p.name}" for p in wrong_programs(lesson_id)],
             *DOES_NOT_SOLVE,
         ]
@@ -97,8 +102,10 @@ def test_the_required_lessons_are_shipped():
 @pytest.mark.parametrize("lesson_id", LESSONS)
 def test_a_lesson_has_its_files_and_variants(lesson_id):
     lesson = load_lesson(lesson_dir(lesson_id))
-    for name in ("README.md", "starter.py", "solution.py"):
+    for name in ("README.md", "starter.py", "solution.py", "starter_pybricks.py", "solution_pybricks.py"):
         assert (lesson.folder / name).is_file(), name
+    assert lesson.starter_pybricks == lesson.folder / "starter_pybricks.py"
+    assert lesson.solution_pybricks == lesson.folder / "solution_pybricks.py"
     assert len(lesson.variants) >= 2
     assert lesson.hidden_variants(), "at least one hidden variant"
     assert lesson.hidden_file == lesson.folder / HIDDEN_DIR / HIDDEN_FILE
@@ -163,17 +170,32 @@ def test_what_only_hidden_variants_need_lives_in_the_hidden_folder(lesson_id):
                 )
 
 
+def imported_modules(path: Path) -> set[str]:
+    tree = ast.parse(path.read_text())
+    modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    return modules | {
+        n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module
+    }
+
+
 @pytest.mark.parametrize("lesson_id", LESSONS)
 def test_programs_are_plain_ev3dev2_programs(lesson_id):
     folder = lesson_dir(lesson_id)
     for path in [folder / "starter.py", folder / "solution.py", *wrong_programs(lesson_id)]:
-        tree = ast.parse(path.read_text())
-        modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
-        modules |= {
-            n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom) and n.module
-        }
+        modules = imported_modules(path)
         assert "ev3sim2d" not in modules, path
         assert "ev3dev2" in modules, path
+
+
+@pytest.mark.parametrize("lesson_id", LESSONS)
+def test_pybricks_programs_are_plain_pybricks_programs(lesson_id):
+    """What runs on an EV3 with LEGO's EV3 MicroPython image: pybricks and MicroPython's modules only."""
+    folder = lesson_dir(lesson_id)
+    for path in [folder / "starter_pybricks.py", folder / "solution_pybricks.py"]:
+        modules = imported_modules(path)
+        assert "pybricks" in modules, path
+        assert modules <= {"pybricks", "math", "time", "random"}, f"{path}: {modules}"
+        assert path.read_text().startswith("#!/usr/bin/env pybricks-micropython\n"), path
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
@@ -187,8 +209,19 @@ def test_the_solution_gets_full_marks_in_every_variant(lesson_id, not_solving_fo
 
 
 @pytest.mark.parametrize("lesson_id", LESSONS)
-def test_the_starter_runs(lesson_id, not_solving_folder):
-    result = graded(lesson_id, not_solving_folder)["starter"]
+def test_the_pybricks_solution_gets_full_marks_in_every_variant(lesson_id, not_solving_folder):
+    result = graded(lesson_id, not_solving_folder)["solution_pybricks"]
+    assert len(result.variants) == len(load_lesson(lesson_dir(lesson_id)).variants)
+    for variant in result.variants:
+        failed = [f"{c.name}: {c.message}" for c in variant.failed_checks()]
+        assert variant.status == "graded" and not failed, f"{variant.name}: {variant.message}; {failed}"
+    assert result.full_marks
+
+
+@pytest.mark.parametrize("starter", ["starter", "starter_pybricks"])
+@pytest.mark.parametrize("lesson_id", LESSONS)
+def test_the_starter_runs(lesson_id, starter, not_solving_folder):
+    result = graded(lesson_id, not_solving_folder)[starter]
     assert result.status == "graded", result.first_failure()
 
 

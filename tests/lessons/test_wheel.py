@@ -37,6 +37,7 @@ def test_the_wheel_ships_every_lesson_but_no_hidden_variant_solution_or_wrong_pr
     for lesson_id in LESSONS:
         assert f"ev3sim2d/_lessons/{lesson_id}/lesson.yaml" in lessons
         assert f"ev3sim2d/_lessons/{lesson_id}/starter.py" in lessons
+        assert f"ev3sim2d/_lessons/{lesson_id}/starter_pybricks.py" in lessons
         assert f"ev3sim2d/_lessons/{lesson_id}/README.md" in lessons
     leaks = [
         name
@@ -44,7 +45,7 @@ def test_the_wheel_ships_every_lesson_but_no_hidden_variant_solution_or_wrong_pr
         if "/hidden/" in name
         or name.endswith("/hidden.yaml")
         or "/wrong/" in name
-        or name.endswith("/solution.py")
+        or name.endswith(("/solution.py", "/solution_pybricks.py"))
     ]
     assert not leaks
     hidden_worlds = {p.name for p in (ROOT / "lessons").glob("*/hidden/*")}
@@ -60,6 +61,7 @@ def test_the_shipped_lessons_load_from_the_wheels_copy(unpacked):
         "for lesson_id in list_shipped_lessons():\n"
         "    lesson = load_lesson(lesson_id)\n"
         "    assert lesson.variants and not lesson.hidden_variants() and lesson.solution is None\n"
+        "    assert lesson.solution_pybricks is None and lesson.starter_pybricks is not None\n"
         "    print(lesson_id, len(lesson.variants))\n"
     )
     env = {**os.environ, "PYTHONPATH": str(unpacked)}
