@@ -164,6 +164,11 @@ MOTOR = {  # extmod/modmotor.c: motor_Motor_make_new, motor_Motor_locals_dict_ta
         "(kp, ki, kd, tight_loop_limit, angle_tolerance, speed_tolerance, stall_speed, stall_time)"
     ),
 }
+MAILBOX_HANDLER = {  # bricks/ev3dev/modules/pybricks/messaging.py: MailboxHandlerMixIn, under both ends
+    "read_from_mailbox": "(mbox)",
+    "send_to_mailbox": "(brick, mbox, payload)",
+    "wait_for_mailbox_update": "(mbox)",
+}
 MAILBOX = {  # bricks/ev3dev/modules/pybricks/messaging.py: Mailbox
     "__init__": "(name, connection, encode=None, decode=None)",
     "read": "()",
@@ -341,6 +346,8 @@ API = {
             "__enter__": "()",
             "__exit__": "(type, value, traceback)",
             "server_close": "()",
+            "handle_request": "()",  # bluetooth.py: RFCOMMServer
+            **MAILBOX_HANDLER,
         },
         "BluetoothMailboxClient": {
             "__init__": "()",
@@ -348,6 +355,7 @@ API = {
             "close": "()",
             "__enter__": "()",
             "__exit__": "(type, value, traceback)",
+            **MAILBOX_HANDLER,
         },
     },
     # bricks/ev3dev/modules/pybricks/ev3brick.py: the EV3 MicroPython 1.0 module, kept by 2.0
@@ -405,7 +413,8 @@ def inner_members(ref: str) -> dict:
 
 
 def lookups() -> list[dict]:
-    """[{path, root: "module:M" | "instance:M.C", chain: [...], want: "(sig)" | "=" | "."}] for every name."""
+    """[{path, root: "module:M" | "instance:M.C", chain: [...], want: "(sig)" | "=" | "." | "only"}] for every
+    name; "only" (path `Class.*`) is the check that a class has no public name the firmware's has not."""
     found = []
 
     def add(path, root, chain, want):
@@ -425,6 +434,15 @@ def lookups() -> list[dict]:
                 add(path, f"module:{module}", [name], member)
                 continue
             found.append({"path": path, "root": f"module:{module}", "chain": [name], "want": "="})
+            found.append(
+                {
+                    "path": f"{path}.*",
+                    "root": f"module:{module}",
+                    "chain": [name],
+                    "want": "only",
+                    "names": sorted(member),
+                }
+            )
             for attr, want in member.items():
                 if attr == "__init__":
                     found.append(
@@ -499,6 +517,8 @@ for lookup in LOOKUPS:
             for name in lookup["chain"]:
                 holder, obj = obj, getattr(obj, name)
             fact["found"] = True
+            if "names" in lookup:  # the class's public names that the firmware's has not
+                fact["extra"] = sorted(n for n in dir(obj) if not n.startswith("_") and n not in lookup["names"])
             fact["callable"] = callable(obj)
             if callable(obj):
                 fact["params"] = parameters(obj, holder, lookup["chain"][-1] if lookup["chain"] else "")
@@ -571,6 +591,9 @@ def problem(lookup: dict, fact: dict) -> str:
         return "is in the shim, but not in the firmware" if fact["found"] else ""
     if not fact["found"]:
         return "absent"
+    if want == "only":
+        extra = fact.get("extra", [])
+        return f"has public names the firmware's has not: {', '.join(extra)}" if extra else ""
     if want.startswith("("):
         if not fact["callable"]:
             return "is not callable"
