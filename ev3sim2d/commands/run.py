@@ -249,6 +249,7 @@ def main(args) -> int:
             arguments=getattr(args, "program_arguments", ()),
             debug="start" if args.debug or args.debug_adapter is not None else "breakpoints",
             debugger=debugger,
+            keep_written=True,  # (a DataLog's CSV, a log: beside the program afterwards, as on a brick)
         )
     except (WorldFileError, RobotOptionError) as err:
         return fail(str(err))

@@ -47,7 +47,7 @@ from ..protocol.shared_memory import create_memory
 from ..protocol.stream import send_timeout
 from . import job_object, memory_watch, sandbox_exec
 from .scratch import open_console, remove_tree, tail
-from .working_folder import WorkingFolder, make_working_folder
+from .working_folder import WorkingFolder, keep_written, make_working_folder
 
 PACKAGE_DIR = Path(__file__).resolve().parent.parent  # ev3sim2d/
 BOOT = PACKAGE_DIR / "brick" / "boot.py"
@@ -95,6 +95,8 @@ class BrickProcess:
     memory: memory_watch.Watched | None = None  # its processes' memory together, where /proc shows them
     outside: dict = field(default_factory=dict)  # isolation layers put around it from outside: name -> state
     working: WorkingFolder | None = None  # the copy of the program's folder it works in
+    keep_written: bool = False  # keep what its program wrote beside itself (working_folder.keep_written)
+    kept: tuple[list[str], list[str]] = ([], [])  # (files kept, files not kept and why) once it stopped
 
     def stop(self, patience_s: float = 0.0) -> None:
         """Kill the brick and everything it started, reap it, remove its scratch folder.
@@ -124,6 +126,8 @@ class BrickProcess:
         kill_orphans()
         self.console_text = tail(self.console, KEEP_CONSOLE_BYTES)
         os.close(self.console)
+        if self.keep_written and self.working is not None:
+            self.kept = keep_written(self.working)
         _remove(self.scratch)
 
     def ended_by_signal(self) -> str | None:

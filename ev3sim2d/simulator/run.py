@@ -143,6 +143,7 @@ def run_programs(
     arguments: Sequence[str] = (),
     debug: str | None = None,
     debugger=None,
+    keep_written: bool = False,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -162,7 +163,9 @@ def run_programs(
     in the brick's debugger; "start": each program stops at its first line too), and debugger the front
     end a stopped program asks: debugger(robot index, shown, real, event) -> command, where shown is the
     program as the caller named it and real its path as its brick knows it (brick/debugger.py).
-    Each brick works in a copy of its program's folder (simulator/working_folder.py).
+    Each brick works in a copy of its program's folder (simulator/working_folder.py); keep_written: the
+    files a program made beside itself are kept in its folder afterwards (for the one who runs a program
+    of their own: never a grader's class folder).
     Nothing tells a brick which world it is in, or when the run will be stopped (the time limit is the
     simulator's): a program learns of the world only by its sensors.
     """
@@ -183,6 +186,7 @@ def run_programs(
             brick, read_paths = start_brick(
                 list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote, limits=limits, program=path
             )
+            brick.keep_written = keep_written
             bricks.append(brick)
             brick_seed = seed if program_seed is None else program_seed
             brick.channel.send(
@@ -225,6 +229,12 @@ def run_programs(
         for p, b in zip(loaded, bricks, strict=False)
         if b.working and b.working.note
     ]
+    for p, b in zip(loaded, bricks, strict=False):
+        kept, not_kept = b.kept
+        if kept:
+            result.notes.append(f"{p.path}: kept what it wrote beside itself: {', '.join(kept)}")
+        if not_kept:
+            result.notes.append(f"{p.path}: did not keep what it wrote: {'; '.join(not_kept)}")
     del sim, ports, session
     gc.collect()  # free the pymunk world now: left to interpreter exit, its teardown complains
     return result

@@ -4,7 +4,12 @@ On an EV3, Brickman starts a program with `brickrun --directory <the program's f
 opens its own data files by relative paths, and writes logs and CSV files beside itself.  A brick
 works in a copy of what it may read (the program's folder, or only the program's file where that is
 all it may read, as a graded file in a class folder), made in its scratch folder: relative paths work
-as on the brick, writes land in the copy, and nothing written outlasts the run.
+as on the brick, and writes land in the copy.  Nothing written outlasts the run, except where the one
+who runs a program of their own asks for it (`ev3sim2d run`): then the files the program made at the top
+of its folder (a DataLog's CSV, a log) are kept in the program's folder afterwards, as on a brick
+(`keep_written`), never over a file there (a name taken gets a number: log.csv, log-2.csv, since a
+run's virtual clock gives a DataLog the same name each run), never through a link, at most KEEP_FILES
+of KEEP_BYTES each.
 
 The copy is made by the simulator from files a student controls, so it follows no link (a link to a
 lesson's hidden variants is not copied), opens nothing but regular files (no FIFO, no device), and is
@@ -21,12 +26,14 @@ from __future__ import annotations
 import os
 import stat
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 MAX_BYTES = 32 * 2**20
 MAX_ENTRIES = 500  # files and folders
 MAX_DEPTH = 16
+KEEP_FILES = 20  # files a program made that a run keeps, at most ...
+KEEP_BYTES = 16 * 2**20  # ... of this size each
 CHUNK = 1 << 20
 _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 _NONBLOCK = getattr(os, "O_NONBLOCK", 0)
@@ -40,6 +47,8 @@ class WorkingFolder:
     folder: Path
     program: Path
     note: str | None = None
+    origin: Path | None = None  # the folder `folder` is a copy of (None: the program was copied alone)
+    copied: dict = field(default_factory=dict)  # name -> (size, mtime) at the top of `folder` once made
 
 
 def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> WorkingFolder:
@@ -54,7 +63,7 @@ def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> W
             target.mkdir()
             _copy_tree(source, target, budget)
             if working is None and _inside(program, source):
-                working = WorkingFolder(target, target / program.relative_to(source))
+                working = WorkingFolder(target, target / program.relative_to(source), origin=source)
         elif source == program:
             target = _free_name(scratch, program.parent.name or "program")
             target.mkdir()
@@ -70,7 +79,84 @@ def make_working_folder(scratch: Path, readable: list[Path], program: Path) -> W
         working.program.parent.mkdir(parents=True, exist_ok=True)
         _copy_file(program, working.program, _Budget())
     working.note = budget.note()
+    working.copied = _top_files(working.folder)
     return working
+
+
+def _top_files(folder: Path) -> dict:
+    """name -> (size, modification time) of the entries at the top of a folder (links not followed)."""
+    found = {}
+    for entry in os.scandir(folder):
+        info = entry.stat(follow_symlinks=False)
+        found[entry.name] = (info.st_size, info.st_mtime_ns)
+    return found
+
+
+def keep_written(working: WorkingFolder) -> tuple[list[str], list[str]]:
+    """Copy the regular files the program made or changed at the top of its working folder into the
+    folder it is a copy of: (names kept, why others were not).  A name taken there is left alone, and the target is
+    opened so that it follows no link (O_EXCL, O_NOFOLLOW): whatever the folder holds, nothing is written
+    but a new file.  Called once the brick has ended."""
+    if working.origin is None:
+        return [], []
+    kept, not_kept = [], []
+    try:
+        now = _top_files(working.folder)
+    except OSError:
+        return [], []
+    names = sorted(name for name, seen in now.items() if working.copied.get(name) != seen)
+    for name in names:
+        if _left_out(name) or name.endswith((".pyc", ".part")):
+            continue
+        if len(kept) >= KEEP_FILES:
+            not_kept.append(f"{name} (only the first {KEEP_FILES} files a program makes are kept)")
+            continue
+        try:
+            why = _keep_file(working.folder / name, working.origin, name)
+        except OSError as err:
+            why = f"{err.strerror or err}"
+        if why is None or why.startswith("as "):
+            kept.append(name if why is None else f"{name} {why}")
+        elif why:
+            not_kept.append(f"{name} ({why})")
+    return kept, not_kept
+
+
+def _keep_file(source: Path, folder: Path, name: str) -> str | None:
+    """None once copied as `name`, "as NAME" once copied under a free name; why not otherwise ("" for
+    what is not a file: not worth a word)."""
+    fd = os.open(source, os.O_RDONLY | _NOFOLLOW | _NONBLOCK | _BINARY)
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            return ""
+        if info.st_size > KEEP_BYTES:
+            return f"larger than {KEEP_BYTES // 2**20} MB"
+        stem, dot, extension = name.rpartition(".") if "." in name.lstrip(".") else (name, "", "")
+        for number in range(1, 100):
+            chosen = name if number == 1 else f"{stem}-{number}{dot}{extension}"
+            try:
+                out = os.open(
+                    folder / chosen, os.O_WRONLY | os.O_CREAT | os.O_EXCL | _NOFOLLOW | _BINARY, 0o644
+                )
+                break
+            except FileExistsError:
+                continue
+        else:
+            return "its name and 98 numbered ones are taken there"
+        try:
+            left = info.st_size
+            while left > 0:
+                chunk = os.read(fd, min(CHUNK, left))
+                if not chunk:
+                    break
+                os.write(out, chunk)
+                left -= len(chunk)
+        finally:
+            os.close(out)
+    finally:
+        os.close(fd)
+    return None if chosen == name else f"as {chosen}"
 
 
 class _Budget:

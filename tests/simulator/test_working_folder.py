@@ -4,7 +4,8 @@ Brickman starts a program with `brickrun --directory=<the program's folder>` (br
 src/file_browser.vala, and brickrun's --directory option: "the working directory of the program"),
 so a program on an EV3 opens its data files by relative paths and writes its logs beside itself.
 A brick here works in a copy of what it may read, made in its scratch folder: nothing it writes
-outlasts the run, nothing outside it is readable, and the copy is bounded.
+outlasts the run unless `ev3sim2d run` keeps it (the files it made beside itself, never over a file),
+nothing outside it is readable, and the copy is bounded.
 """
 
 import os
@@ -230,3 +231,72 @@ def test_a_temporary_folder_inside_the_programs_folder_is_not_copied(tmp_path, m
     assert _printed(result) == ["['data', 'prog.py', 'tuning.py']"]
     assert result.notes == []
     assert sorted(p.name for p in temporary.iterdir()) == ["ev3sim2d-brick-other"]  # and cleaned up
+
+
+# ---------------------------------------------------------------- what `ev3sim2d run` keeps
+
+DATALOG = """
+    from pybricks.tools import DataLog
+    log = DataLog("t", "x")
+    log.log(0, 1)
+    with open("notes.txt", "w") as f:
+        f.write("ran")
+    import os
+    os.makedirs("logs", exist_ok=True)
+    open("logs/deep.txt", "w").write("not kept: only the top of the folder is")
+"""
+
+
+def test_ev3sim2d_run_keeps_what_the_program_wrote_beside_itself_and_never_overwrites(tmp_path, capsys):
+    """On a brick a DataLog's CSV stays beside the program (pybricks tools.py DataLog: a file by a relative
+    name, in brickrun's --directory): `ev3sim2d run` keeps the files the program made or changed at the
+    top of its folder; a name taken (a second run's log, whose virtual clock gives it the same name) gets a
+    number, and nothing there is overwritten."""
+    folder, program = _program_folder(tmp_path, DATALOG)
+    (folder / "notes.txt").write_text("the student's own notes\n")
+    for _ in range(2):
+        assert cli.main(["run", str(program), "--maze", "empty", "--time", "2", "--quiet"]) == 0
+    logs = sorted((p.name for p in folder.glob("log_*.csv")), key=len)
+    assert len(logs) == 2 and logs[1] == logs[0].replace(".csv", "-2.csv")
+    assert (folder / logs[0]).read_text() == "t, x\n0, 1\n"  # the firmware's format
+    assert (folder / "notes.txt").read_text() == "the student's own notes\n"  # never overwritten
+    assert sorted(p.name for p in folder.glob("notes-*.txt")) == ["notes-2.txt", "notes-3.txt"]
+    assert not (folder / "logs").exists()
+    err = capsys.readouterr().err
+    assert f"kept what it wrote beside itself: {logs[0]}" in err and "notes.txt as notes-2.txt" in err
+
+
+def test_a_grader_or_the_python_api_keeps_nothing(tmp_path):
+    """run_programs keeps nothing unless asked (`ev3sim2d run` asks): a class folder a grader runs in,
+    and the folder of a program given to simulate(), stay as they were."""
+    folder, program = _program_folder(tmp_path, DATALOG)
+    before = sorted(p.relative_to(folder) for p in folder.rglob("*"))
+    result = run_programs([program], arena(), time_limit_s=2, hang_after_s=2)
+    assert result.status == "finished", result.reason
+    assert sorted(p.relative_to(folder) for p in folder.rglob("*")) == before
+
+
+@pytest.mark.needs_linux("symlinks")
+def test_a_link_planted_at_a_kept_name_is_not_written_through(tmp_path):
+    """Whoever can write into the program's folder may plant a link where the program's file will be kept:
+    the file is kept under a free name, and the link's target is untouched."""
+    victim = tmp_path / "victim.txt"
+    victim.write_text("precious\n")
+    folder, program = _program_folder(tmp_path, "open('notes.txt', 'w').write('ran')\n")
+    (folder / "notes.txt").symlink_to(victim)
+    result = run_programs([program], arena(), time_limit_s=2, hang_after_s=2, keep_written=True)
+    assert result.status == "finished", result.reason
+    assert victim.read_text() == "precious\n" and (folder / "notes.txt").is_symlink()
+    assert (folder / "notes-2.txt").read_text() == "ran"
+
+
+def test_only_so_many_files_of_so_many_bytes_are_kept(tmp_path, monkeypatch):
+    monkeypatch.setattr(working_folder, "KEEP_FILES", 3)
+    monkeypatch.setattr(working_folder, "KEEP_BYTES", 100)
+    folder, program = _program_folder(
+        tmp_path, "for i in range(5):\n    open(f'f{i}.txt', 'w').write('x' * (10 if i else 500))\n"
+    )
+    result = run_programs([program], arena(), time_limit_s=2, hang_after_s=2, keep_written=True)
+    assert sorted(p.name for p in folder.glob("f*.txt")) == ["f1.txt", "f2.txt", "f3.txt"]
+    said = " ".join(result.notes)
+    assert "f0.txt (larger than 0 MB)" in said and "f4.txt (only the first 3 files" in said
