@@ -1,8 +1,8 @@
 #!/usr/bin/env pybricks-micropython
 """Tools: a StopWatch times a drive, and a DataLog writes the wheel's angle against time to a CSV file.
 
-The file (log.csv, beside where the program runs in the brick) is printed at the end, as
-print(data) shows it on an EV3.
+The file is log.csv, in the program's folder on the brick (`ev3sim2d run` leaves it beside the program);
+the program prints it at the end, as print(data) shows it on an EV3.
 
 Try it:  ev3sim2d run examples/pybricks/datalog.py --maze empty
 """
