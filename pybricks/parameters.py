@@ -103,4 +103,4 @@ class Align:
     TOP_RIGHT = 9
 
 
-from .media.ev3dev import ImageFile, SoundFile  # noqa: E402, F401 - 1.0 programs import them from here
+from ._media_files import ImageFile, SoundFile  # noqa: E402, F401 - 1.0 programs import them from here
