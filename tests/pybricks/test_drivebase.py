@@ -222,3 +222,33 @@ def test_reversed_motors_drive_backwards(run):
     x, _, _ = pose(result)
     assert abs((x - 60) * 10 + 200) <= 1.0
     assert out["d"][0] == "200" and int(out["d"][1]) > 0
+
+
+def test_a_robot_file_gives_the_wheels_as_drivebase_takes_them(run):
+    """A robot file says wheel_diameter_mm and axle_track_mm, the figures LEGO's building instructions and
+    DriveBase(left, right, wheel_diameter, axle_track) use (pybricks-api robotics.DriveBase): a program
+    giving its robot's figures drives the distances and turns the angles it asks for, with small wheels
+    as with the set's own."""
+    from ev3sim2d.world.robot_spec import parse_robot
+
+    spec = parse_robot(
+        "name: small wheels\nwheel_diameter_mm: 43.2\naxle_track_mm: 100\n"
+        "body: {front_cm: 8, back_cm: 6, width_cm: 13}\n"
+        "motors:\n  - {port: outB, kind: large, wheel: left}\n  - {port: outC, kind: large, wheel: right}\n"
+    )
+    result = run(
+        HEADER
+        + """
+robot = DriveBase(Motor(Port.B), Motor(Port.C), wheel_diameter=43.2, axle_track=100)
+robot.straight(300)
+robot.turn(90)
+print('done', robot.distance(), robot.angle())
+""",
+        robot=spec,
+    )
+    out = output(result)
+    assert out["done"] == ["300", "90"]
+    x, y, heading = pose(result)
+    start = result.trace.poses(0)[0]
+    assert math.isclose(math.hypot(x - start[0], y - start[1]), 30, abs_tol=0.1)
+    assert math.isclose((start[2] - heading) % 360, 90, abs_tol=1)  # clockwise: the world's angle falls
