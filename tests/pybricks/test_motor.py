@@ -132,6 +132,9 @@ timed('nowait', lambda: m.run_angle(500, 360, wait=False))
 print('done-early', m.control.done())
 time.sleep(1.5)
 print('done-late', m.control.done(), m.angle())
+timed('track', lambda: m.track_target(450))
+time.sleep(0.5)
+print('tracked', m.angle())
 """
     )
     out = output(result)
@@ -140,6 +143,7 @@ print('done-late', m.control.done(), m.angle())
     assert float(out["run"][0]) <= IO_S and float(out["dc"][0]) <= IO_S
     assert float(out["nowait"][0]) <= IO_S
     assert out["done-early"] == ["False"] and out["done-late"] == ["True", "360"]
+    assert float(out["track"][0]) <= IO_S and out["tracked"] == ["450"]
 
 
 def test_stop_modes(run):
