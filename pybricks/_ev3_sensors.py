@@ -6,6 +6,7 @@ returns: ints, bools, a Color or None, a list of Buttons.
 """
 
 from . import _sensor
+from ._arguments import get_int
 from .parameters import Button, Color, Direction
 
 # modev3devices.c ev3devices_ColorSensor_color: the driver's colour numbers -> Color (0 and others: None)
@@ -45,17 +46,10 @@ _KEYPAD = (
 
 def _channel(channel):
     """A remote's channel, 1 to 4; anything else is ValueError (pb_assert(PBIO_ERROR_INVALID_ARG))."""
-    number = _int(channel)
+    number = get_int(channel)
     if number < 1 or number > 4:
         raise ValueError("channel must be 1, 2, 3 or 4")
     return number
-
-
-def _int(value):
-    """pb_obj_get_int: an int (a float is truncated), TypeError for anything else."""
-    if not isinstance(value, (int, float)):
-        raise TypeError(f"can't convert {type(value).__name__} to int")
-    return int(value)
 
 
 class TouchSensor(_sensor.Sensor):
@@ -192,4 +186,4 @@ class GyroSensor(_sensor.Sensor):
 
     def reset_angle(self, angle):
         """Make angle() read `angle` now."""
-        self._offset = self._angle_offset(_int(angle))
+        self._offset = self._angle_offset(get_int(angle))

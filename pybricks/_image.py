@@ -19,6 +19,7 @@ from PIL import Image as _PILImage
 from PIL import ImageDraw, ImageFont
 
 from . import _link
+from ._arguments import get_int
 from .parameters import Color
 
 SCREEN_WIDTH = 178
@@ -75,15 +76,6 @@ def grey(color):
         raise TypeError(f"Expected Color, got {type(color).__name__}")
     r, g, b = _RGB[color.name]
     return WHITE if (299 * r + 587 * g + 114 * b) // 1000 >= 128 else BLACK
-
-
-def _as_int(value, name="value"):
-    """pb_obj_get_int (py/pbobj.c): a float is truncated toward zero, an int taken as it is."""
-    if isinstance(value, float):
-        return int(value)
-    if isinstance(value, int):
-        return int(value)
-    raise TypeError(f"can't convert {type(value).__name__} to int")
 
 
 def _threshold(picture):
@@ -223,8 +215,8 @@ class Image:
         elif isinstance(source, Image):
             self._on_screen = source._on_screen if sub else False
             if sub:
-                left, top = _as_int(x1, "x1"), _as_int(y1, "y1")
-                right, bottom = _as_int(x2, "x2"), _as_int(y2, "y2")
+                left, top = get_int(x1), get_int(y1)
+                right, bottom = get_int(x2), get_int(y2)
                 # grx_context_new_subcontext: the window, clipped to the image it is in
                 left, right = max(min(left, right), 0), min(max(left, right), source.width - 1)
                 top, bottom = max(min(top, bottom), 0), min(max(top, bottom), source.height - 1)
@@ -248,7 +240,7 @@ class Image:
     @staticmethod
     def empty(width=SCREEN_WIDTH, height=SCREEN_HEIGHT):
         """A new white image, the size of the screen unless told (ev3dev_Image_empty)."""
-        width, height = _as_int(width), _as_int(height)
+        width, height = get_int(width), get_int(height)
         if width <= 0 or height <= 0:
             raise ValueError("width and height must be greater than 0")
         return Image(Image._blank(width, height))
@@ -304,7 +296,7 @@ class Image:
 
     def draw_pixel(self, x, y, color=Color.BLACK):
         """Draw one pixel."""
-        x, y, level = _as_int(x), _as_int(y), grey(color)
+        x, y, level = get_int(x), get_int(y), grey(color)
 
         def how(picture, draw):
             if level is not None:
@@ -314,7 +306,7 @@ class Image:
 
     def draw_line(self, x1, y1, x2, y2, width=1, color=Color.BLACK):
         """Draw a line from (x1, y1) to (x2, y2), `width` pixels wide."""
-        x1, y1, x2, y2, width = _as_int(x1), _as_int(y1), _as_int(x2), _as_int(y2), _as_int(width)
+        x1, y1, x2, y2, width = get_int(x1), get_int(y1), get_int(x2), get_int(y2), get_int(width)
         level = grey(color)
 
         def how(picture, draw):
@@ -325,7 +317,7 @@ class Image:
 
     def draw_box(self, x1, y1, x2, y2, r=0, fill=False, color=Color.BLACK):
         """Draw a rectangle with corners (x1, y1) and (x2, y2), with corners rounded by `r`, filled or not."""
-        x1, y1, x2, y2, r = _as_int(x1), _as_int(y1), _as_int(x2), _as_int(y2), _as_int(r)
+        x1, y1, x2, y2, r = get_int(x1), get_int(y1), get_int(x2), get_int(y2), get_int(r)
         level = grey(color)
         box = (min(x1, x2), min(y1, y2), max(x1, x2), max(y1, y2))
 
@@ -341,7 +333,7 @@ class Image:
 
     def draw_circle(self, x, y, r, fill=False, color=Color.BLACK):
         """Draw a circle of radius `r` around (x, y), filled or not."""
-        x, y, r = _as_int(x), _as_int(y), abs(_as_int(r))
+        x, y, r = get_int(x), get_int(y), abs(get_int(r))
         level = grey(color)
 
         def how(picture, draw):
@@ -353,7 +345,7 @@ class Image:
     def draw_image(self, x, y, source, transparent=None):
         """Draw `source` (an Image or a .png file's name) with its top left corner at (x, y); pixels of the
         `transparent` colour are left out."""
-        x, y = _as_int(x), _as_int(y)
+        x, y = get_int(x), get_int(y)
         if isinstance(source, str):
             source = Image(source)
         if not isinstance(source, Image):
@@ -390,7 +382,7 @@ class Image:
 
     def draw_text(self, x, y, text, text_color=Color.BLACK, background_color=None):
         """Draw `text` (anything: it is printed as str) with its top left corner at (x, y)."""
-        x, y = _as_int(x), _as_int(y)
+        x, y = get_int(x), get_int(y)
         if not isinstance(text, (str, bytes)):
             text = str(text)
         elif isinstance(text, bytes):

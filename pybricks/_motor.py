@@ -14,6 +14,7 @@ reads are the brick's.  Writes are cached: an attribute is written only when its
 from errno import EOPNOTSUPP, EPERM
 
 from . import _device, _link
+from ._arguments import get_int
 from .parameters import Direction, Stop
 
 # -------------------------------------------------------------- fixed point (libfixmath fix16, Q16.16)
@@ -78,19 +79,6 @@ def isqrt(n: int) -> int:
         if x1 == x0 or x1 == x0 + 1:
             return x0
         x0 = x1
-
-
-def get_int(value) -> int:
-    """pb_obj_get_int: a float is truncated toward zero (0.5 s -> 0), an int is taken as it is."""
-    if isinstance(value, float):
-        return int(value)
-    if isinstance(value, bool) or not isinstance(value, int):
-        if hasattr(value, "__index__") and not isinstance(value, bool):
-            return value.__index__()
-        if isinstance(value, bool):
-            return int(value)
-        raise TypeError(f"can't convert {type(value).__name__} to int")
-    return value
 
 
 def perm_error():

@@ -16,6 +16,7 @@ import time
 import wave
 
 from . import _link
+from ._arguments import get_int
 
 # pb_type_ev3dev_speaker.c ev3dev_Speaker_play_note: the notes of octave 0, by name
 _NOTES = {
@@ -34,15 +35,6 @@ APLAY_RAW_BYTES_PER_S = 8000  # aplay plays a file that is not a .wav as 8-bit m
 
 # the mixer: percent per channel, and what the simulated brick's one volume was last set to
 _mixer = {"Beep": 30, "PCM": 70, "sent": None}
-
-
-def _int(value):
-    """pb_obj_get_int (py/pbobj.c): floats truncated toward zero."""
-    if isinstance(value, float):
-        return int(value)
-    if isinstance(value, int):
-        return int(value)
-    raise TypeError(f"can't convert {type(value).__name__} to int")
 
 
 def _c_div(a, b):
@@ -119,7 +111,7 @@ class Speaker:
     def beep(self, frequency=500, duration=100):
         """Beep at `frequency` Hz for `duration` ms and wait for it to end; a negative duration starts the
         beep and returns at once."""
-        freq, ms = _int(frequency), _int(duration)
+        freq, ms = get_int(frequency), get_int(duration)
         if ms < 0:
             _channel("Beep")
             note = {"frequency": freq, "length_ms": 0, "delay_ms": 0, "repeats": 1}
@@ -130,7 +122,7 @@ class Speaker:
     def play_notes(self, notes, tempo=120):
         """Play notes such as 'C4/4' (name, octave 2-8, '/', fraction, then '.' for dotted and '_' for
         tied) at `tempo` quarter notes a minute; each untied note sounds 7/8 of its length."""
-        whole_ms = _c_div(4 * 60 * 1000, _int(tempo))
+        whole_ms = _c_div(4 * 60 * 1000, get_int(tempo))
         for note in notes:
             self._play_note(note, whole_ms)
 
@@ -225,13 +217,13 @@ class Speaker:
             self._voice = _c_string(voice, 10)
         self._voice_setting = f"{self._language}+{self._voice}"[:20]
         if speed is not None:
-            self._speed = str(_int(speed))[:7]
+            self._speed = str(get_int(speed))[:7]
         if pitch is not None:
-            self._pitch = str(_int(pitch))[:7]
+            self._pitch = str(get_int(pitch))[:7]
 
     def set_volume(self, volume, which="_all_"):
         """Set the volume, 0 to 100 %, of 'Beep' (beeps and notes), 'PCM' (files and speech) or both."""
-        volume = max(0, min(100, _int(volume)))
+        volume = max(0, min(100, get_int(volume)))
         if not isinstance(which, str):
             raise TypeError(f"can't convert '{type(which).__name__}' object to str implicitly")
         if which == "_default_":

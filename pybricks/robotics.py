@@ -11,6 +11,7 @@ mm, mm/s, deg and deg/s; a positive turn is clockwise (to the right, seen from a
 import time as _time
 
 from . import _link
+from ._arguments import get_int
 from ._motor import (
     _CLAIMED,
     ANGLE,
@@ -25,7 +26,6 @@ from ._motor import (
     fix16_div,
     fix16_from,
     fix16_mul,
-    get_int,
     perm_error,
 )
 from .parameters import Stop

@@ -9,6 +9,8 @@ simulated run every clock is the virtual one, so waits and stopwatches follow th
 import time as _time
 from builtins import print  # noqa: A004 - 1.0 programs import print from pybricks.tools
 
+from ._arguments import get_int
+
 __all__ = ["print", "wait", "StopWatch", "DataLog"]
 
 
@@ -21,18 +23,9 @@ def _ticks_us():
     return _time.monotonic_ns() // 1_000
 
 
-def _int(value):
-    """pb_obj_get_int (py/pbobj.c): a float is truncated toward zero (wait(0.5) waits 0 ms)."""
-    if isinstance(value, float):
-        return int(value)
-    if isinstance(value, int):
-        return int(value)
-    raise TypeError(f"can't convert {type(value).__name__} to int")
-
-
 def wait(time):
     """Wait `time` ms (floats truncated toward zero; 0 or less returns at once)."""
-    duration = _int(time)
+    duration = get_int(time)
     if duration > 0:
         _time.sleep(duration / 1000)
 

@@ -52,6 +52,7 @@ SHIM_MODULES = (
     "ev3dev2.stopwatch",
     "pybricks",
     "pybricks._link",
+    "pybricks._arguments",
     "pybricks._media_files",
     "pybricks.parameters",
     "pybricks._sensor",
