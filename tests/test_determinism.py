@@ -74,15 +74,10 @@ def _run(program: Path, machine: dict, summary: Path) -> dict:
     return json.loads(summary.read_text())
 
 
-@pytest.fixture(scope="module")
-def summaries(tmp_path_factory) -> dict[str, list[dict]]:
-    """Every program run on the first machine, then (in a later second of the wall clock) on the second."""
-    folder = tmp_path_factory.mktemp("determinism")
-    programs = {}
-    for name, source in SOURCES.items():
-        programs[name] = folder / f"{name}.py"
-        programs[name].write_text(PROGRAM.format(source=source))
-    found: dict[str, list[dict]] = {name: [] for name in SOURCES}
+def run_on_two_machines(programs: dict[str, Path], folder: Path) -> dict[str, list[dict]]:
+    """Every program run on the first machine, then (in a later second of the wall clock) on the second:
+    name -> [its summary on each]."""
+    found: dict[str, list[dict]] = {name: [] for name in programs}
     with ThreadPoolExecutor(max_workers=2) as pool:
         for i, machine in enumerate(MACHINES):
             if i:
@@ -94,6 +89,16 @@ def summaries(tmp_path_factory) -> dict[str, list[dict]]:
             for name, run in runs.items():
                 found[name].append(run.result())
     return found
+
+
+@pytest.fixture(scope="module")
+def summaries(tmp_path_factory) -> dict[str, list[dict]]:
+    folder = tmp_path_factory.mktemp("determinism")
+    programs = {}
+    for name, source in SOURCES.items():
+        programs[name] = folder / f"{name}.py"
+        programs[name].write_text(PROGRAM.format(source=source))
+    return run_on_two_machines(programs, folder)
 
 
 @pytest.mark.parametrize("source", SOURCES)

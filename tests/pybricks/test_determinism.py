@@ -5,15 +5,9 @@ through Pybricks or MicroPython's modules."""
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
-import sys
-import time
-from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
-
 import pytest
+
+from tests.test_determinism import run_on_two_machines
 
 # each source sets `value`, a number in [0, 1) that steers the robot
 SOURCES = {
@@ -43,20 +37,6 @@ wait(1500)
 robot.turn(int(90 * value))
 """
 
-MACHINES = ({"PYTHONHASHSEED": "random", "TZ": "UTC"}, {"PYTHONHASHSEED": "123", "TZ": "Asia/Kolkata"})
-
-
-def _run(program: Path, machine: dict, summary: Path) -> dict:
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHASHSEED", "TZ")}
-    env.update(machine)
-    done = subprocess.run(
-        [sys.executable, "-m", "ev3sim2d", "run", str(program), "--maze", "empty", "--time", "5"]
-        + ["--summary", str(summary), "--quiet"],
-        capture_output=True, text=True, env=env, timeout=120,
-    )  # fmt: skip
-    assert done.returncode == 0, done.stderr
-    return json.loads(summary.read_text())
-
 
 @pytest.fixture(scope="module")
 def summaries(tmp_path_factory) -> dict[str, list[dict]]:
@@ -66,18 +46,7 @@ def summaries(tmp_path_factory) -> dict[str, list[dict]]:
         programs[name] = folder / name / "main.py"  # (a folder each: DataLog writes beside its program)
         programs[name].parent.mkdir()
         programs[name].write_text(PROGRAM.format(source=source))
-    found: dict[str, list[dict]] = {name: [] for name in SOURCES}
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        for i, machine in enumerate(MACHINES):
-            if i:
-                time.sleep(1.05 - time.time() % 1)  # the wall clock shows another second
-            runs = {
-                name: pool.submit(_run, path, machine, folder / f"{name}-{i}.json")
-                for name, path in programs.items()
-            }
-            for name, run in runs.items():
-                found[name].append(run.result())
-    return found
+    return run_on_two_machines(programs, folder)
 
 
 @pytest.mark.parametrize("source", SOURCES)
