@@ -102,7 +102,7 @@ TIMER_SIGNALS = {
         ("ITIMER_VIRTUAL", "SIGVTALRM"),
         ("ITIMER_PROF", "SIGPROF"),
     )
-    if hasattr(signal, which)
+    if hasattr(signal, which) and hasattr(signal, number)  # (a system may have one and not the other)
 }
 FILE_TIMES = ("st_atime", "st_mtime", "st_ctime", "st_birthtime")
 SHIM_PACKAGES = (

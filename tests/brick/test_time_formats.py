@@ -216,3 +216,17 @@ def test_the_sleep_a_star_import_of_the_shim_gives_is_virtual_in_a_forked_brick(
     assert forked.status == fresh.status == "finished", (forked.reason, fresh.reason)
     assert lines(forked) == lines(fresh)
     assert 2.0 <= float(lines(forked)[0]) < 2.01
+
+
+def test_a_timer_is_virtual_only_where_the_system_has_both_its_clock_and_its_signal():
+    """Feature checks, not system names: a Python with signal.ITIMER_REAL but no SIGALRM (a stand-in for
+    Windows that leaves the constant) loads the brick's clocks and leaves that timer out, where it
+    failed to start any brick before."""
+    code = (
+        "import signal\ndel signal.SIGALRM\n"
+        "from ev3sim2d.brick import clocks\n"
+        "print(signal.ITIMER_REAL in clocks.TIMER_SIGNALS, signal.ITIMER_VIRTUAL in clocks.TIMER_SIGNALS)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["False", "True"]
