@@ -365,3 +365,16 @@ def test_pybricks_messaging():
     said = {(o.robot, o.text) for o in result.trace.output}  # robot 0 runs the server, robot 1 the client
     assert (1, "the server says hello!") in said
     assert (0, "the client says 42.0") in said
+
+
+def test_pybricks_other_devices():
+    """nxtdevices.LightSensor (extmod/modnxtdevices.c), iodevices.Ev3devSensor and DCMotor
+    (extmod/modiodevices.c, modmotor.c): on the shipped robot port 1 holds a touch sensor, so the light
+    sensor is OSError ENODEV, which the program catches; on the NXT robot file it reads the floor."""
+    lines = printed(run_pybricks("other_devices", maze="line")[0])
+    assert lines == ["no NXT light sensor on S1", "COL-REFLECT (40,) RGB-RAW 4 values", "arm done"]
+    robot = load_robot(EXAMPLES / "robots" / "nxt-light-base.yaml")
+    result, _ = run_pybricks("other_devices", maze="line", robot=robot)
+    light = printed(result)[0].split()
+    assert light[:4] == ["NXT", "light", "sensor:", "reflection"] and 0 <= int(light[4]) <= 100
+    assert printed(result)[1:] == lines[1:]
