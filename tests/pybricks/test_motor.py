@@ -254,3 +254,32 @@ except ValueError:
     braked = int(out["braked"][0])
     assert 0 <= braked - ran < 15 and out["still"] == [str(braked)]  # stopped within the brake's writes
     assert out["backwards"] == out["missing"] == out["sensor-port"] == ["True"]
+
+
+def test_run_until_stalled_blocks_until_the_end_stop_and_returns_the_angle_there(run):
+    """modmotor.c motor_Motor_run_until_stalled: it always waits, until the motor stalls (an arm against
+    its end stop, here 90 degrees away), then stops with `then` (COAST by default) and returns the angle;
+    both directions."""
+    from ev3sim2d.world.robot_spec import parse_robot
+
+    spec = parse_robot(
+        "name: arm\nwheel_diameter_mm: 56\naxle_track_mm: 120\nbody: {front_cm: 9, back_cm: 7, width_cm: 15}\n"
+        "motors:\n  - {port: B, kind: large, wheel: left}\n  - {port: C, kind: large, wheel: right}\n"
+        "  - {port: A, kind: medium, limits_deg: [-30, 90]}\n"
+    )
+    result = run(
+        HEADER
+        + """
+arm = Motor(Port.A)
+start = time.time()
+print('up', arm.run_until_stalled(300), round(time.time() - start, 2))
+print('down', arm.run_until_stalled(-300, then=Stop.HOLD))
+time.sleep(0.5)
+print('held', arm.angle())
+""",
+        robot=spec,
+    )
+    out = output(result)
+    assert abs(int(out["up"][0]) - 90) <= 1
+    assert 0.3 <= float(out["up"][1]) <= 0.8  # 90 degrees at 300 deg/s after the ramp, then the stall time
+    assert abs(int(out["down"][0]) + 30) <= 1 and out["held"] == out["down"][:1]
