@@ -25,7 +25,7 @@ import secrets
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from ..results.output_files import write_file
+from ..results.output_files import make_folder_in, read_limited, write_file
 from ..world.maze_file import find_maze
 from ..world.source_error import WorldFileError
 from .exit_codes import EXIT_OK, fail
@@ -157,9 +157,9 @@ def main(args) -> int:
         return fail(f"--folder {folder}: no such folder")
     try:
         if args.editor == "vscode":
-            written = _vscode(folder / ".vscode", args.world)
+            written = _vscode(make_folder_in(folder, ".vscode"), args.world)
         else:
-            written = _pycharm(folder / ".idea" / "runConfigurations", args.world)
+            written = _pycharm(make_folder_in(folder, Path(".idea") / "runConfigurations"), args.world)
     except (JsoncError, OSError) as err:
         return fail(str(err))
     for line in written:
@@ -199,7 +199,6 @@ def _vscode(folder: Path, world: str) -> list[str]:
         if text and new == text:
             changes.append(f"{path}: has what ev3sim2d needs already; left as it is")
             continue
-        folder.mkdir(exist_ok=True)
         write_file(path, new)
         changes.append(f"{path}: {'added to' if text else 'written'}")
     changes.append(
@@ -222,7 +221,6 @@ def _pycharm(folder: Path, world: str) -> list[str]:
     path = folder / "run_in_ev3sim2d.xml"
     if path.exists() or path.is_symlink():
         return [f"{path}: there already; left as it is"]
-    folder.mkdir(parents=True, exist_ok=True)
     write_file(path, pycharm_configuration(world))
     return [f"{path}: written", f'Open a program and choose "{RUN_TASK}" in the run configurations.']
 
@@ -234,12 +232,16 @@ def _missing(ours: list[dict], have: dict, key: str, name: str) -> list[dict]:
 
 
 def _read(path: Path) -> str:
-    if not path.exists():
-        return ""
-    if not path.is_file() or path.stat().st_size > MAX_BYTES:
-        raise OSError(f"{path}: not an editor's settings file (a folder, or over {MAX_BYTES // 2**20} MB)")
+    """The settings file's text, read without following a link (a link, a FIFO or a device planted at the
+    name is refused, PlantedFile), and not past MAX_BYTES."""
     try:
-        return path.read_text(encoding="utf-8-sig")
+        data = read_limited(path, MAX_BYTES + 1)
+    except FileNotFoundError:
+        return ""
+    if len(data) > MAX_BYTES:
+        raise OSError(f"{path}: not an editor's settings file (over {MAX_BYTES // 2**20} MB)")
+    try:
+        return data.decode("utf-8-sig").replace("\r\n", "\n").replace("\r", "\n")  # (as read_text reads it)
     except UnicodeDecodeError as err:
         raise OSError(
             f"{path}: not UTF-8 text ({err.reason} at byte {err.start}); VS Code saves it as UTF-8"

@@ -13,6 +13,7 @@ regular file; a file read back (a worker's result) is opened the same way and re
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import stat
 import tempfile
@@ -114,6 +115,22 @@ def make_folder(path: str | Path) -> Path:
     return folder
 
 
+def make_folder_in(base: str | Path, relative: str | Path) -> Path:
+    """The folder base/relative (e.g. a project's .idea/runConfigurations), made part by part; refused when
+    a part is a link or not a folder, wherever it is (a link at `.idea` would put the files where it
+    points, though the last part is a real folder there)."""
+    folder = Path(base)
+    for part in Path(relative).parts:
+        folder = folder / part
+        try:
+            os.mkdir(folder)
+        except FileExistsError:
+            pass
+        if not stat.S_ISDIR(os.lstat(folder).st_mode):
+            raise PlantedFile(f"{folder}: not a folder of its own (a link or a file is there): refused")
+    return folder
+
+
 def append_text(path: str | Path, text: str) -> None:
     """Append text to an existing or new regular file at path, never through a link there."""
     fd = os.open(
@@ -129,7 +146,12 @@ def append_text(path: str | Path, text: str) -> None:
 def read_limited(path: str | Path, limit: int) -> bytes:
     """At most `limit` bytes from the start of the regular file at path, never through a link (a link,
     a FIFO or a device planted at the name is refused: PlantedFile)."""
-    fd = os.open(path, os.O_RDONLY | _NOFOLLOW | _NONBLOCK | _CLOEXEC | _BINARY)
+    try:
+        fd = os.open(path, os.O_RDONLY | _NOFOLLOW | _NONBLOCK | _CLOEXEC | _BINARY)
+    except OSError as err:
+        if err.errno == errno.ELOOP or (err.errno == errno.EMLINK and os.path.islink(path)):  # (O_NOFOLLOW)
+            raise PlantedFile(f"{path}: a link (something was put at this name): refused") from None
+        raise
     try:
         _regular(fd, path)
         chunks, left = [], limit
