@@ -75,6 +75,11 @@ def main(args) -> int:
     except OSError as err:
         return fail(f"cannot listen on 127.0.0.1:{args.port}: {err.strerror}")
     print(f"ev3sim2d edit: editing {world_file.path} at {server.url} (Ctrl+C to stop)", flush=True)
+    print(
+        "ev3sim2d edit: the address's #token=... is this start's key; only a page opened with it can read or "
+        "change anything, so keep it to yourself (docs/editor.md)",
+        flush=True,
+    )
     if not args.no_browser:
         threading.Thread(target=webbrowser.open, args=(server.url,), daemon=True).start()
     try:

@@ -89,6 +89,11 @@ def main(args) -> int:
     become_subreaper()  # whatever a program's process leaves behind comes back here and is ended
     live.start()
     print(f"ev3sim2d live: {', '.join(args.programs)} at {server.url} (Ctrl+C to stop)", flush=True)
+    print(
+        "ev3sim2d live: the address's #token=... is this start's key; only a page opened with it can read or "
+        "change anything, so keep it to yourself (docs/live.md)",
+        flush=True,
+    )
     if not args.no_browser:
         threading.Thread(target=webbrowser.open, args=(server.url,), daemon=True).start()
     try:

@@ -5,7 +5,8 @@ writes it into the file's text (see maze_writer), reads that text back with the
 world loader and only then replaces the file - atomically, keeping the previous
 version as FILE.bak.  Anything else is refused with a JSON error: other paths,
 large or non-JSON bodies, other hosts or origins.  Nothing but the one file
-(and its .bak) is ever written.
+(and its .bak) is ever written.  Who may ask (the page token, no other site's page, never framed) and
+how many at once: ev3sim2d/editor/page_guard.py.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import json
 import math
 import threading
 from http import HTTPStatus
-from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from http.server import BaseHTTPRequestHandler
 from pathlib import Path
 
 from ..results.output_files import replace_keeping_backup
@@ -22,6 +23,15 @@ from ..world.maze_writer import write_maze_text
 from ..world.source_error import WorldFileError
 from ..world.world_json import BadEdit, MazeSource, edited_from_json
 from ..world.yaml_source import read_text_file
+from .page_guard import (
+    MAX_JSON_DEPTH,
+    REQUEST_TIMEOUT_S,
+    SECURITY_HEADERS,
+    TOKEN_HEADER,
+    PageServer,
+    json_depth_ok,
+    token_matches,
+)
 
 STATIC_DIR = Path(__file__).with_name("static")
 STATIC_FILES = {
@@ -29,6 +39,7 @@ STATIC_FILES = {
     "/index.html": ("index.html", "text/html; charset=utf-8"),
     "/editor.js": ("editor.js", "text/javascript; charset=utf-8"),
     "/world_canvas.js": ("world_canvas.js", "text/javascript; charset=utf-8"),  # shared with the live page
+    "/page_token.js": ("page_token.js", "text/javascript; charset=utf-8"),  # shared with the live page
     "/editor.css": ("editor.css", "text/css; charset=utf-8"),
 }
 MAX_BODY_BYTES = 4 * 1024 * 1024
@@ -82,19 +93,34 @@ class EditorHandler(BaseHTTPRequestHandler):
     server: EditorServer
     server_version = "ev3sim2d-editor"
     sys_version = ""
+    timeout = REQUEST_TIMEOUT_S  # a request must arrive (and a stream's reader keep reading) within this
+    program_name = "ev3sim2d edit"
 
     def log_message(self, format: str, *args) -> None:  # noqa: A002 - the base class's name
         if self.server.verbose:
             super().log_message(format, *args)
 
+    # -- the connection: waiting for a request (it may be closed for room) or serving one -----------
+    def handle_one_request(self) -> None:
+        self.server.mark(waiting=True)
+        super().handle_one_request()
+
+    def parse_request(self) -> bool:
+        ok = super().parse_request()
+        if ok:
+            self.server.mark(waiting=False)
+        return ok
+
     # -- answers ---------------------------------------------------------------------
+    def end_headers(self) -> None:
+        for name, value in SECURITY_HEADERS:  # every answer, errors and the event stream included
+            self.send_header(name, value)
+        super().end_headers()
+
     def _send(self, status: int, body: bytes, content_type: str) -> None:
         self.send_response(status)
         self.send_header("Content-Type", content_type)
         self.send_header("Content-Length", str(len(body)))
-        self.send_header("Cache-Control", "no-store")
-        self.send_header("X-Content-Type-Options", "nosniff")
-        self.send_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data:")
         self.end_headers()
         if self.command != "HEAD":
             self.wfile.write(body)
@@ -104,6 +130,40 @@ class EditorHandler(BaseHTTPRequestHandler):
 
     def _error(self, status: int, message: str) -> None:
         self._json(status, {"error": message})
+
+    # -- who is asking -----------------------------------------------------------------
+    def _page_request_ok(self) -> bool:
+        """Our own Host (no DNS rebinding), and not another site's page: the same answer for every path,
+        so a page elsewhere learns nothing from what it asks for."""
+        if not self._host_ok():
+            return False
+        own = f"http://{self.headers.get('Host', '')}"
+        site = self.headers.get("Sec-Fetch-Site")
+        origin = self.headers.get("Origin")
+        referer = self.headers.get("Referer")
+        # Our page only ever asks its own origin ("same-origin"); the student opening the address is
+        # "none".  "same-site" is another port of 127.0.0.1 - another program's page - so it is refused.
+        if (
+            (site is not None and site not in ("same-origin", "none"))
+            or (origin is not None and origin != own)
+            or (referer is not None and referer != own and not referer.startswith(own + "/"))
+        ):
+            self.close_connection = True
+            self._error(HTTPStatus.FORBIDDEN, "requests from other pages than this server's own are refused")
+            return False
+        return True
+
+    def _token_ok(self) -> bool:
+        """The request carries this server start's page token (X-Ev3sim2d-Token)."""
+        if token_matches(self.headers.get(TOKEN_HEADER), self.server.token):
+            return True
+        self.close_connection = True
+        self._error(
+            HTTPStatus.FORBIDDEN,
+            f"this request does not carry the page's key: open the address {self.program_name} printed (it "
+            f"ends in #token=...); a script sends the key as the header {TOKEN_HEADER}",
+        )
+        return False
 
     def _origin_ok(self) -> bool:
         """A POST comes from our own page, not from another site's page in the same browser."""
@@ -119,29 +179,44 @@ class EditorHandler(BaseHTTPRequestHandler):
         port = self.server.server_address[1]
         host = self.headers.get("Host", "")
         if host not in (f"127.0.0.1:{port}", f"localhost:{port}"):
+            self.close_connection = True
             self._error(HTTPStatus.FORBIDDEN, f"wrong Host {host!r}; open http://127.0.0.1:{port}/")
             return False
         return True
 
+    def _json_body(self, length: int) -> object:
+        """The body's JSON, or a BadBody naming what is wrong with it."""
+        try:
+            data = json.loads(self.rfile.read(length).decode("utf-8"))
+        except (UnicodeDecodeError, json.JSONDecodeError) as err:
+            raise BadBody(f"the request is not JSON: {err}") from None
+        except RecursionError:
+            raise BadBody(f"the request's JSON nests too deeply (at most {MAX_JSON_DEPTH} levels)") from None
+        if not json_depth_ok(data):
+            raise BadBody(f"the request's JSON nests too deeply (at most {MAX_JSON_DEPTH} levels)")
+        return data
+
     # -- requests --------------------------------------------------------------------
     def do_GET(self) -> None:  # noqa: N802 - http.server's name
-        if not self._host_ok():
+        if not self._page_request_ok():
             return
         path = self.path.split("?", 1)[0]
+        static = STATIC_FILES.get(path)
+        if static is not None:  # the page's own files hold no data: no token needed
+            name, content_type = static
+            self._send(HTTPStatus.OK, (STATIC_DIR / name).read_bytes(), content_type)
+            return
+        if not self._token_ok():
+            return
         if path == "/api/world":
             self._json(HTTPStatus.OK, self.server.world_file.world_json())
             return
-        static = STATIC_FILES.get(path)
-        if static is None:
-            self._error(HTTPStatus.NOT_FOUND, f"no such page {path!r}")
-            return
-        name, content_type = static
-        self._send(HTTPStatus.OK, (STATIC_DIR / name).read_bytes(), content_type)
+        self._error(HTTPStatus.NOT_FOUND, f"no such page {path!r}")
 
     do_HEAD = do_GET
 
     def do_POST(self) -> None:  # noqa: N802
-        if not self._host_ok():
+        if not self._page_request_ok() or not self._token_ok():
             return
         if self.path != "/api/save":
             self._error(
@@ -165,14 +240,15 @@ class EditorHandler(BaseHTTPRequestHandler):
             self._error(HTTPStatus.REQUEST_ENTITY_TOO_LARGE, f"the request is over {MAX_BODY_BYTES} bytes")
             self.close_connection = True
             return
-        body = self.rfile.read(length)
         try:
-            data = json.loads(body.decode("utf-8"))
-        except (UnicodeDecodeError, json.JSONDecodeError) as err:
-            self._error(HTTPStatus.BAD_REQUEST, f"the request is not JSON: {err}")
+            data = self._json_body(length)
+        except BadBody as err:
+            self._error(HTTPStatus.BAD_REQUEST, str(err))
             return
         try:
             result = self.server.world_file.save(data)
+        except RecursionError:
+            self._error(HTTPStatus.BAD_REQUEST, "the world sent nests too deeply; nothing was saved")
         except BadEdit as err:
             self._error(HTTPStatus.BAD_REQUEST, str(err))
         except WorldFileError as err:
@@ -185,22 +261,20 @@ class EditorHandler(BaseHTTPRequestHandler):
             self._json(HTTPStatus.OK, result)
 
     def _refuse(self) -> None:
-        if self._host_ok():
+        if self._page_request_ok():
             self._error(HTTPStatus.METHOD_NOT_ALLOWED, f"{self.command} is not supported")
 
     do_PUT = do_DELETE = do_PATCH = do_OPTIONS = _refuse
 
 
-class EditorServer(ThreadingHTTPServer):
-    """A ThreadingHTTPServer on 127.0.0.1 for one world file."""
+class BadBody(ValueError):
+    """A request body that is not the JSON asked for; the message says why."""
 
-    daemon_threads = True
+
+class EditorServer(PageServer):
+    """The editor's server on 127.0.0.1 for one world file (page token and limits: page_guard.py)."""
 
     def __init__(self, world_file: WorldFile, port: int = 0, verbose: bool = False) -> None:
         self.world_file = world_file
         self.verbose = verbose
-        super().__init__(("127.0.0.1", port), EditorHandler)
-
-    @property
-    def url(self) -> str:
-        return f"http://127.0.0.1:{self.server_address[1]}/"
+        super().__init__(port, EditorHandler)

@@ -5,8 +5,9 @@ The API is what the page uses and what a teacher may script: GET /api/state (a s
 closed page misses states, the simulation never waits for it), GET /api/world (the world with its
 edits, as the editor's page reads it), and POSTs that pause, resume, step, change the speed, reload,
 reset, move a robot, change a cell and save the world.  The same safety rules as the editor's server
-(ev3sim2d/editor/server.py, whose answers and Host check this reuses): only our own Host, no other
-Origin, JSON bodies of limited size, errors as JSON with a message.
+(ev3sim2d/editor/server.py, whose answers and checks this reuses): only our own Host, no other site's
+page, the page token on every API request (ev3sim2d/editor/page_guard.py), never framed, JSON bodies of
+limited size and depth, errors as JSON with a message, a cap on connections.
 """
 
 from __future__ import annotations
@@ -19,13 +20,13 @@ import threading
 import time
 import zlib
 from http import HTTPStatus
-from http.server import ThreadingHTTPServer
 from pathlib import Path
 from urllib.parse import parse_qs
 
 from ..devices import registry
+from ..editor.page_guard import PageServer
 from ..editor.server import STATIC_DIR as EDITOR_STATIC_DIR
-from ..editor.server import EditorHandler, WorldFile
+from ..editor.server import BadBody, EditorHandler, WorldFile
 from ..results.output_files import replace_keeping_backup
 from ..world.cell import Cell
 from ..world.robot_spec import SENSOR_PORTS, robot_yaml
@@ -40,6 +41,7 @@ STATIC_FILES = {
     "/live.js": (STATIC_DIR, "live.js", "text/javascript; charset=utf-8"),
     "/live.css": (STATIC_DIR, "live.css", "text/css; charset=utf-8"),
     "/world_canvas.js": (EDITOR_STATIC_DIR, "world_canvas.js", "text/javascript; charset=utf-8"),
+    "/page_token.js": (EDITOR_STATIC_DIR, "page_token.js", "text/javascript; charset=utf-8"),
 }
 MAX_BODY_BYTES = 64 * 1024  # the commands are small; the world is saved from the server's own copy
 EVENTS_EVERY_S = 1 / 30
@@ -163,12 +165,19 @@ class LiveHandler(EditorHandler):
 
     server: LiveServer
     server_version = "ev3sim2d-live"
+    program_name = "ev3sim2d live"
 
     # -- GET ---------------------------------------------------------------------------
     def do_GET(self) -> None:  # noqa: N802 - http.server's name
-        if not self._host_ok():
+        if not self._page_request_ok():
             return
         path = self.path.split("?", 1)[0]
+        if path in STATIC_FILES:  # the page's own files hold no data: no token needed
+            folder, name, content_type = STATIC_FILES[path]
+            self._send(HTTPStatus.OK, (folder / name).read_bytes(), content_type)
+            return
+        if not self._token_ok():
+            return
         live = self.server.live
         if path == "/api/state":
             self._send(HTTPStatus.OK, state_json(live.state()), "application/json; charset=utf-8")
@@ -180,9 +189,6 @@ class LiveHandler(EditorHandler):
             self._lcd()
         elif path == "/api/robot":
             self._robot()
-        elif path in STATIC_FILES:
-            folder, name, content_type = STATIC_FILES[path]
-            self._send(HTTPStatus.OK, (folder / name).read_bytes(), content_type)
         else:
             self._error(HTTPStatus.NOT_FOUND, f"no such page {path!r}; the API is described in docs/live.md")
 
@@ -247,8 +253,6 @@ class LiveHandler(EditorHandler):
         """Server-Sent Events: each new state as `data: {...}`; ends when the page goes or we close."""
         self.send_response(HTTPStatus.OK)
         self.send_header("Content-Type", "text/event-stream; charset=utf-8")
-        self.send_header("Cache-Control", "no-store")
-        self.send_header("X-Content-Type-Options", "nosniff")
         self.end_headers()
         self.close_connection = True
         if self.command == "HEAD":
@@ -274,7 +278,7 @@ class LiveHandler(EditorHandler):
 
     # -- POST --------------------------------------------------------------------------
     def do_POST(self) -> None:  # noqa: N802
-        if not self._host_ok():
+        if not self._page_request_ok() or not self._token_ok():
             return
         path = self.path.split("?", 1)[0]
         command = COMMANDS.get(path)
@@ -293,6 +297,8 @@ class LiveHandler(EditorHandler):
             answer = command(self.server, data)
         except BadRequest as err:
             self._error(HTTPStatus.BAD_REQUEST, str(err))
+        except RecursionError:
+            self._error(HTTPStatus.BAD_REQUEST, "the request nests too deeply; nothing was changed")
         except (LiveError, BadEdit, WorldFileError) as err:
             self._error(HTTPStatus.CONFLICT, str(err))
         except OSError as err:
@@ -320,9 +326,9 @@ class LiveHandler(EditorHandler):
             )
             return None
         try:
-            data = json.loads(self.rfile.read(length).decode("utf-8"))
-        except (UnicodeDecodeError, json.JSONDecodeError) as err:
-            self._error(HTTPStatus.BAD_REQUEST, f"the request is not JSON: {err}")
+            data = self._json_body(length)
+        except BadBody as err:
+            self._error(HTTPStatus.BAD_REQUEST, str(err))
             return None
         if not isinstance(data, dict):
             self._error(HTTPStatus.BAD_REQUEST, "the request must be a JSON object")
@@ -508,10 +514,8 @@ COMMANDS = {
 }
 
 
-class LiveServer(ThreadingHTTPServer):
-    """A ThreadingHTTPServer on 127.0.0.1 for one live run."""
-
-    daemon_threads = True
+class LiveServer(PageServer):
+    """The live page's server on 127.0.0.1 for one live run (page token and limits: page_guard.py)."""
 
     def __init__(
         self, live: LiveRun, world_file: LiveWorldFile, port: int = 0, verbose: bool = False
@@ -521,12 +525,8 @@ class LiveServer(ThreadingHTTPServer):
         self.world_label = str(world_file.path) if world_file.path else str(world_file.shipped_name)
         self.verbose = verbose
         self.closing = threading.Event()
-        super().__init__(("127.0.0.1", port), LiveHandler)
+        super().__init__(port, LiveHandler)
 
     def server_close(self) -> None:
         self.closing.set()  # the event streams end
         super().server_close()
-
-    @property
-    def url(self) -> str:
-        return f"http://127.0.0.1:{self.server_address[1]}/"

@@ -10,16 +10,20 @@ from pathlib import Path
 
 import pytest
 
+from ev3sim2d.editor.page_guard import TOKEN_HEADER
 from ev3sim2d.results.output_files import replace_keeping_backup
 from ev3sim2d.world.maze_file import load_maze
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def request(editor, method, path, body=None, headers=None):
+def request(editor, method, path, body=None, headers=None, token=True):
+    """A request as the editor's own page makes it: with the page token (unless token=False)."""
     connection = http.client.HTTPConnection("127.0.0.1", editor.port, timeout=10)
+    sent = {TOKEN_HEADER: editor.server.token} if token else {}
+    sent.update(headers or {})
     try:
-        connection.request(method, path, body=body, headers=headers or {})
+        connection.request(method, path, body=body, headers=sent)
         response = connection.getresponse()
         data = response.read()
         return response.status, response.getheader("Content-Type", ""), data
@@ -251,10 +255,15 @@ def test_new_makes_a_walled_arena_and_serves_it(tmp_path):
     )
     try:
         line = process.stdout.readline()
-        assert "http://127.0.0.1:" in line
+        assert "http://127.0.0.1:" in line and "/#token=" in line
         port = int(line.split("http://127.0.0.1:")[1].split("/")[0])
+        token = line.split("#token=")[1].split()[0]
         connection = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
         connection.request("GET", "/api/world")
+        refused = connection.getresponse()
+        assert refused.status == 403 and "#token=" in json.loads(refused.read())["error"]
+        connection = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+        connection.request("GET", "/api/world", headers={TOKEN_HEADER: token})
         world = json.loads(connection.getresponse().read())
         assert (world["width"], world["height"], world["cell_cm"]) == (12, 8, 10)
     finally:

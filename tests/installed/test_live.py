@@ -11,8 +11,9 @@ import urllib.request
 import pytest
 
 
-def _get(url: str) -> bytes:
-    with urllib.request.urlopen(url, timeout=10) as answer:
+def _get(url: str, token: str = "") -> bytes:
+    request = urllib.request.Request(url, headers={"X-Ev3sim2d-Token": token} if token else {})
+    with urllib.request.urlopen(request, timeout=10) as answer:
         return answer.read()
 
 
@@ -26,12 +27,13 @@ def test_live_serves_its_page_and_api_and_leaves_a_trace(installed, user_folder)
     )  # fmt: skip
     try:
         line = live.stdout.readline()
-        url = re.search(r"(http://127\.0\.0\.1:\d+/?)", line).group(1).rstrip("/")
+        found = re.search(r"(http://127\.0\.0\.1:\d+)/#token=([A-Za-z0-9_-]+)", line)
+        url, token = found.group(1), found.group(2)  # the page's address carries this run's key
         page = _get(url + "/").decode()
         for script in re.findall(r'src="/?([^"]+\.js)"', page):
             assert _get(f"{url}/{script}"), script  # every file the page loads is in the wheel
         deadline = time.monotonic() + 60
-        while json.loads(_get(url + "/api/state"))["status"] != "ended":
+        while json.loads(_get(url + "/api/state", token))["status"] != "ended":
             assert time.monotonic() < deadline, "the 5 s run did not end"
             time.sleep(0.1)
     finally:

@@ -15,7 +15,10 @@ import pytest
 
 
 def _state(url: str) -> dict:
-    with urllib.request.urlopen(url + "api/state", timeout=30) as answer:
+    """GET api/state with the page token the printed address carries (http://127.0.0.1:PORT/#token=...)."""
+    base, token = url.split("#token=")
+    request = urllib.request.Request(base + "api/state", headers={"X-Ev3sim2d-Token": token})
+    with urllib.request.urlopen(request, timeout=30) as answer:
         return json.loads(answer.read())
 
 
@@ -49,7 +52,7 @@ def live(tmp_path):
             assert line, "live ended before it gave its address"
             found = re.search(r"at (http://127\.0\.0\.1:\d+/\S*)", line)
             url = found.group(1) if found else None
-        yield process, url if url.endswith("/") else url + "/"
+        yield process, url
     finally:
         process.kill()
         process.wait()

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pytest
 
+from ev3sim2d.editor.page_guard import TOKEN_HEADER
 from ev3sim2d.live.engine import LiveRun
 from ev3sim2d.live.server import LiveServer, LiveWorldFile
 from ev3sim2d.world.maze_file import load_maze
@@ -42,15 +43,17 @@ def arena_text(width: int = 20, height: int = 20) -> str:
 
 
 class Client:
-    """Requests to a live server, answers as (status, JSON)."""
+    """Requests to a live server as its page makes them (with the page token), answers as (status, JSON)."""
 
-    def __init__(self, port: int) -> None:
+    def __init__(self, port: int, token: str) -> None:
         self.port = port
+        self.token = token
 
     def request(self, method: str, path: str, body: object = None, headers: dict | None = None):
         conn = http.client.HTTPConnection("127.0.0.1", self.port, timeout=60)
         data = None if body is None else json.dumps(body).encode()
         sent = {"Content-Type": "application/json"} if data is not None else {}
+        sent[TOKEN_HEADER] = self.token
         sent.update(headers or {})
         conn.request(method, path, body=data, headers=sent)
         response = conn.getresponse()
@@ -95,7 +98,7 @@ def live_server(tmp_path):
         threading.Thread(target=server.serve_forever, daemon=True).start()
         live.start(paused=paused)
         started.append((server, live))
-        client = Client(server.server_address[1])
+        client = Client(server.server_address[1], server.token)
         client.wait_for(lambda s: s["robots"] and s["status"] in ("paused", "running"))
         return client, live, world_path
 
@@ -193,7 +196,10 @@ def test_other_hosts_and_origins_are_refused_and_big_bodies_too(live_server):
     assert status == 413
     conn = http.client.HTTPConnection("127.0.0.1", client.port, timeout=10)
     conn.request(
-        "POST", "/api/step", body=b"ms=5", headers={"Content-Type": "application/x-www-form-urlencoded"}
+        "POST",
+        "/api/step",
+        body=b"ms=5",
+        headers={"Content-Type": "application/x-www-form-urlencoded", TOKEN_HEADER: client.token},
     )
     assert conn.getresponse().status == 415
 
@@ -201,7 +207,7 @@ def test_other_hosts_and_origins_are_refused_and_big_bodies_too(live_server):
 def test_events_stream_the_state_when_it_changes(live_server):
     client, _, _ = live_server(speed=2.0, paused=False)
     conn = http.client.HTTPConnection("127.0.0.1", client.port, timeout=10)
-    conn.request("GET", "/api/events")
+    conn.request("GET", "/api/events", headers={TOKEN_HEADER: client.token})
     response = conn.getresponse()
     assert response.status == 200 and response.getheader("Content-Type").startswith("text/event-stream")
     times = []
@@ -232,9 +238,9 @@ DRAW = """
 """
 
 
-def _get_bytes(port: int, path: str) -> tuple[int, str, bytes]:
-    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
-    conn.request("GET", path)
+def _get_bytes(client: Client, path: str) -> tuple[int, str, bytes]:
+    conn = http.client.HTTPConnection("127.0.0.1", client.port, timeout=10)
+    conn.request("GET", path, headers={TOKEN_HEADER: client.token})
     response = conn.getresponse()
     body = response.read()
     conn.close()
@@ -246,14 +252,14 @@ def test_the_lcd_frame_is_in_the_state_by_number_and_served_as_a_png(live_server
     status, state = client.post("/api/step", {"ms": 500})
     frame = state["robots"][0]["lcd_frame"]
     assert status == 200 and frame is not None
-    status, kind, png = _get_bytes(client.port, f"/api/lcd?robot=1&frame={frame}")
+    status, kind, png = _get_bytes(client, f"/api/lcd?robot=1&frame={frame}")
     assert status == 200 and kind == "image/png" and png.startswith(b"\x89PNG")
     import zlib
 
     rows = zlib.decompress(png[png.index(b"IDAT") + 4 :])  # one IDAT chunk: 128 rows of a filter byte + 178
     assert len(rows) == 128 * 179 and rows[1:179] == bytes([0] * 178)  # the black rectangle's top edge
-    assert _get_bytes(client.port, "/api/lcd?robot=1")[2] == png  # the robot's current frame
-    assert _get_bytes(client.port, "/api/lcd?robot=1&frame=999")[0] == 404
+    assert _get_bytes(client, "/api/lcd?robot=1")[2] == png  # the robot's current frame
+    assert _get_bytes(client, "/api/lcd?robot=1&frame=999")[0] == 404
 
 
 def _colour_sensor(mapping: dict) -> dict:

@@ -166,7 +166,9 @@ def test_live_runs_and_its_trace_is_the_run_of_run(other_systems, linux_run, tmp
         deadline = time.monotonic() + 120
         while state.get("status") != "ended" and time.monotonic() < deadline:
             time.sleep(0.2)
-            with urllib.request.urlopen(f"{url.split('#')[0].rstrip('/')}/api/state", timeout=10) as answer:
+            base, token = url.split("#token=")  # the printed address carries the page's key
+            request = urllib.request.Request(f"{base}api/state", headers={"X-Ev3sim2d-Token": token})
+            with urllib.request.urlopen(request, timeout=10) as answer:
                 state = json.loads(answer.read())
         assert state.get("status") == "ended", state
         live.send_signal(signal.SIGINT)
@@ -202,8 +204,11 @@ def test_the_other_commands_work_there(other_systems, linux_run, tmp_path):
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, cwd=REPO,
     )  # fmt: skip
     try:
-        editor.stdout.readline()
-        with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/world", timeout=30) as answer:
+        token = editor.stdout.readline().split("#token=")[1].split()[0]
+        request = urllib.request.Request(
+            f"http://127.0.0.1:{port}/api/world", headers={"X-Ev3sim2d-Token": token}
+        )
+        with urllib.request.urlopen(request, timeout=30) as answer:
             assert json.loads(answer.read())["width"] == 8
     finally:
         editor.kill()

@@ -93,12 +93,12 @@ def test_live_runs_a_pybricks_program_to_its_end(tmp_path):
         while url is None:
             line = process.stdout.readline()
             assert line, "live ended before it gave its address"
-            found = re.search(r"at (http://127\.0\.0\.1:\d+/\S*)", line)
-            url = found.group(1) if found else None
-        url = url if url.endswith("/") else url + "/"
+            found = re.search(r"at (http://127\.0\.0\.1:\d+/)#token=([A-Za-z0-9_-]+)", line)
+            url, token = (found.group(1), found.group(2)) if found else (None, None)
         deadline = time.monotonic() + 60
         while True:
-            with urllib.request.urlopen(url + "api/state", timeout=30) as answer:
+            request = urllib.request.Request(url + "api/state", headers={"X-Ev3sim2d-Token": token})
+            with urllib.request.urlopen(request, timeout=30) as answer:
                 state = json.loads(answer.read())
             if state.get("status") == "ended":
                 break

@@ -513,7 +513,7 @@
   async function save() {
     say("Saving…");
     try {
-      const response = await fetch("api/save", {
+      const response = await window.PageToken.fetch("api/save", {
         method: "POST",
         headers: { "Content-Type": "application/json" },
         body: JSON.stringify(payload()),
@@ -623,7 +623,7 @@
       if (state && snapshot() !== savedSnapshot) { event.preventDefault(); event.returnValue = ""; }
     });
     try {
-      const response = await fetch("api/world");
+      const response = await window.PageToken.fetch("api/world");
       const data = await response.json();
       if (!response.ok) return say(`Cannot load the world: ${data.error}`, "error");
       load(data, true);

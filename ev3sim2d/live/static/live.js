@@ -45,7 +45,7 @@
   // -- talking to the server ----------------------------------------------------------------
   async function post(path, body) {
     try {
-      const response = await fetch(path, {
+      const response = await window.PageToken.fetch(path, {
         method: "POST",
         headers: body === undefined ? {} : { "Content-Type": "application/json" },
         body: body === undefined ? undefined : JSON.stringify(body),
@@ -67,7 +67,7 @@
     if (fetchingWorld) return;
     fetchingWorld = true;
     try {
-      const response = await fetch("api/world");
+      const response = await window.PageToken.fetch("api/world");
       const data = await response.json();
       if (!response.ok) return say(`Cannot load the world: ${data.error}`, "error");
       world = data;
@@ -103,10 +103,16 @@
   }
 
   function listen() {
-    const events = new EventSource("api/events");
-    events.onmessage = (event) => onState(JSON.parse(event.data));
-    events.onopen = () => say("Connected. Drag a robot, click cells with a tool, or use the buttons.");
-    events.onerror = () => say("Lost the live server; trying again…", "error");
+    if (!window.PageToken.has()) {
+      say("This page has no key: open the address ev3sim2d live printed in its terminal (it ends in #token=…).", "error");
+      return;
+    }
+    window.PageToken.events(
+      "api/events",
+      (data) => onState(JSON.parse(data)),
+      () => say("Connected. Drag a robot, click cells with a tool, or use the buttons."),
+      () => say("Lost the live server; trying again…", "error"),
+    );
   }
 
   // -- plots ------------------------------------------------------------------------------------
@@ -471,15 +477,18 @@
       c.fillRect(0, 0, 178, 128);
       return;
     }
-    const image = new Image();
-    image.onload = () => { if (brick.frame === robot.lcd_frame) c.drawImage(image, 0, 0); };
-    image.src = `api/lcd?robot=${robot.number}&frame=${robot.lcd_frame}&run=${runNumber}`;
+    const frame = robot.lcd_frame;
+    window.PageToken.fetch(`api/lcd?robot=${robot.number}&frame=${frame}&run=${runNumber}`)
+      .then((response) => (response.ok ? response.blob() : null))
+      .then((blob) => (blob ? createImageBitmap(blob) : null))
+      .then((image) => { if (image && brick.frame === frame) c.drawImage(image, 0, 0); })
+      .catch(() => {});
   }
 
   // -- the robot's sensors: changed while paused (POST api/robot), saved to a robot file ----------
   async function loadRobot(number) {
     try {
-      const response = await fetch(`api/robot?robot=${number}`);
+      const response = await window.PageToken.fetch(`api/robot?robot=${number}`);
       const data = await response.json();
       if (!response.ok) return say(data.error, "error");
       robotEdit = data;
