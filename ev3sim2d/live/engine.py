@@ -39,7 +39,7 @@ from ..simulator.session import Session
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from ..world.pose import Pose
-from ..world.robot_spec import RobotSpec, parse_robot, robot_yaml, shipped_robots_dir
+from ..world.robot_spec import RobotSpec, parse_robot, robot_mapping_text, robot_yaml, shipped_robots_dir
 from ..world.world import World
 from ..world.yaml_source import read_text_file
 
@@ -574,10 +574,8 @@ def _robot_text(robot: str | dict) -> str:
     """A robot file's text, or a robot file's mapping (as JSON gives it) written as YAML."""
     if isinstance(robot, str):
         return robot
-    if isinstance(robot, dict):
-        import yaml
-
-        return yaml.safe_dump(robot, sort_keys=False, default_flow_style=None)
+    if isinstance(robot, dict):  # held to a robot file's limits before it is written out (no RecursionError)
+        return robot_mapping_text(robot, "the page's robot")
     raise LiveError("a robot is a robot file's text or its mapping (docs/world-files.md)")
 
 

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .file_limits import MAX_BUTTON_TIME_S
+
 BUTTONS = ("up", "down", "left", "right", "enter", "backspace")
 DEFAULT_HOLD_S = 0.2
 
@@ -44,6 +46,9 @@ def parse_press(text: str) -> ButtonPress:
         hold_s = float(hold) if plus else DEFAULT_HOLD_S
     except ValueError:
         raise ValueError(f"'{text}': the time must be a number of seconds; {usage}") from None
-    if at_s < 0 or hold_s <= 0:
-        raise ValueError(f"'{text}': the time must be 0 or more and the hold more than 0; {usage}")
+    if not (0 <= at_s <= MAX_BUTTON_TIME_S and 0 < hold_s <= MAX_BUTTON_TIME_S):
+        raise ValueError(
+            f"'{text}': the time must be 0 or more and the hold more than 0, each at most "
+            f"{MAX_BUTTON_TIME_S:g} s (a day); {usage}"
+        )
     return ButtonPress(button, at_s, hold_s)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from .cell import WALL, Cell
 from .colors import EV3_COLORS
+from .file_limits import MAX_LEGEND_ENTRIES, MAX_NAME_CHARS
 from .yaml_source import Node
 
 ENTRY_HELP = (
@@ -147,6 +148,11 @@ def cell_from_words(text: str) -> Cell | None:
 def legend_from_node(node: Node, base: Legend = DEFAULT_LEGEND) -> Legend:
     """The `legend:` section of a world file, added to `base`."""
     fields = node.as_fields("legend", allowed=None, example="legend: {G: green}")
+    if len(fields) > MAX_LEGEND_ENTRIES:
+        raise node.error(
+            f"'legend' has {len(fields):,} entries, more than the {MAX_LEGEND_ENTRIES} a world may add "
+            "(docs/world-files.md, Limits); use fewer characters"
+        )
     entries: dict[str, LegendEntry] = {}
     for key, value in fields.items():
         char = key.text
@@ -197,4 +203,9 @@ def _region_name(node: Node) -> str:
     name = node.as_text("region", "region: goal").strip()
     if not name:
         raise node.error("'region' needs a name, e.g. `region: goal`")
+    if len(name) > MAX_NAME_CHARS or any(ord(c) < 32 or ord(c) == 127 for c in name):
+        raise node.error(
+            f"a region's name is 1 to {MAX_NAME_CHARS} characters, not control characters; "
+            "write e.g. `region: goal`"
+        )
     return name

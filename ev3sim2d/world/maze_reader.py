@@ -15,6 +15,22 @@ from typing import Any
 
 from .button_press import parse_press
 from .colors import DEFAULT_SURFACES, EV3_COLORS, REFLECT_RANGE, RGB_RAW_RANGE, Surfaces
+from .file_limits import (
+    ANGLE_DEG,
+    CELL_CM,
+    MAX_BUTTON_PRESSES,
+    MAX_CELLS_PER_SIDE,
+    MAX_DESCRIPTION_CHARS,
+    MAX_NAME_CHARS,
+    MAX_PATH_CHARS,
+    MAX_RECTS_PER_REGION,
+    MAX_REGION_CELLS,
+    MAX_REGIONS,
+    MAX_STARTS,
+    MAX_TITLE_CHARS,
+    MIN_CELLS_PER_SIDE,
+    within,
+)
 from .grid import Grid
 from .grid_text import TextRow, first_non_wall_border_cell, read_text_grid
 from .legend import DEFAULT_LEGEND, legend_from_node
@@ -48,7 +64,7 @@ MAZE_KEYS = (
     "surfaces",
 )
 DEFAULT_CELL_CM = 10.0
-MIN_CELLS = 3
+MIN_CELLS = MIN_CELLS_PER_SIDE
 
 _GRID_HELP = (
     "write `grid: |` and below it one line of cells per row, top row first (or a list of quoted strings)"
@@ -71,13 +87,17 @@ def read_maze(text: str, path: str = "<string>", robots: bool = True) -> dict[st
     fields = Fields(root, "the maze file", MAZE_KEYS)
     name = _name_from_path(path)
     title = fields.text("title", default=name, example="title: My maze")
+    _check_length(fields, "title", title, MAX_TITLE_CHARS)
     description = fields.text("description", default=None, example="description: Drive to the green square.")
     if description is None:
-        description = header_comment(text)
+        description = header_comment(text)[:MAX_DESCRIPTION_CHARS]
+    _check_length(fields, "description", description, MAX_DESCRIPTION_CHARS)
     cell_cm = fields.number("cell_cm", default=DEFAULT_CELL_CM, unit="cm", example="cell_cm: 10")
-    if cell_cm <= 0:
+    if not within(cell_cm, CELL_CM):
         raise fields.get("cell_cm").error(
-            f"'cell_cm' must be more than 0 cm, got {cell_cm:g}; write e.g. `cell_cm: 10`"
+            f"'cell_cm', the size of a grid cell, must be {CELL_CM[0]:g} to {CELL_CM[1]:g} cm, got {cell_cm:g} "
+            "(the shipped worlds use 2 to 20 cm; a finer cell is smaller than the colour sensor's spot); "
+            "write e.g. `cell_cm: 10`"
         )
     legend = legend_from_node(fields.get("legend")) if "legend" in fields else DEFAULT_LEGEND
     grid_node = fields.require("grid", "grid: |")
@@ -93,9 +113,15 @@ def read_maze(text: str, path: str = "<string>", robots: bool = True) -> dict[st
         raise fields.get("ambient").error(f"'ambient' is a light level from 0 to 100, got {ambient:g}")
     surfaces = _surfaces(fields.get("surfaces"))
     buttons = []
-    for node in (
+    press_nodes = (
         fields.get("buttons").as_list("buttons", "buttons: [enter@2.0]") if "buttons" in fields else []
-    ):
+    )
+    if len(press_nodes) > MAX_BUTTON_PRESSES:
+        raise fields.get("buttons").error(
+            f"'buttons' lists {len(press_nodes):,} presses, more than the {MAX_BUTTON_PRESSES:,} a world may "
+            "script (docs/world-files.md, Limits); script fewer"
+        )
+    for node in press_nodes:
         try:
             buttons.append(parse_press(node.as_text("buttons", "buttons: [enter@2.0]")))
         except ValueError as err:
@@ -144,14 +170,17 @@ def _name_from_path(path: str) -> str:
 def _grid_rows(node: Node, text: str) -> list[TextRow]:
     """The grid's rows with their file positions, from a `|` block or a list of strings."""
     if node.is_sequence:
+        _check_rows(node, len(node.raw.value))
         rows = []
         for item in node.as_list("grid"):
             row = item.as_text("grid", '- "#####"')
             quoted = item.style in ("'", '"')
+            _check_row_width(item, len(row.rstrip()))
             rows.append(TextRow(row.rstrip(), item.line, item.column + (1 if quoted else 0)))
         return rows
     if node.is_scalar and node.style == "|":
         source_lines = text.split("\n")
+        _check_rows(node, node.raw.value.strip("\n").count("\n") + 1)
         value_lines = node.raw.value.split("\n")
         first_line = node.line + 1  # a literal block starts on the line after `|`
         indent = _block_indent(source_lines, node.line, value_lines)
@@ -163,10 +192,42 @@ def _grid_rows(node: Node, text: str) -> list[TextRow]:
         for row in rows:
             if not row.text:
                 raise WorldFileError(node.path, row.line, None, "an empty line inside the grid; remove it")
+            if len(row.text) > MAX_CELLS_PER_SIDE:
+                raise WorldFileError(node.path, row.line, row.column, _too_wide(len(row.text)))
         return rows
     if node.is_null:
         raise node.error(f"'grid' is empty (a '#' right after `grid:` starts a YAML comment); {_GRID_HELP}")
     raise node.error(f"'grid' must be rows of cell characters; {_GRID_HELP}")
+
+
+def _check_rows(node: Node, count: int) -> None:
+    """A grid of at most MAX_CELLS_PER_SIDE rows, checked before a row is read."""
+    if count > MAX_CELLS_PER_SIDE:
+        raise node.error(
+            f"the grid has {count:,} rows; a world is at most {MAX_CELLS_PER_SIDE} cells each way "
+            "(docs/world-files.md, Limits); make the grid smaller or the cells bigger (`cell_cm`)",
+            column=False,
+        )
+
+
+def _check_row_width(node: Node, width: int) -> None:
+    if width > MAX_CELLS_PER_SIDE:
+        raise node.error(_too_wide(width))
+
+
+def _too_wide(width: int) -> str:
+    return (
+        f"this row of the grid has {width:,} cells; a world is at most {MAX_CELLS_PER_SIDE} cells each way "
+        "(docs/world-files.md, Limits); make the grid smaller or the cells bigger (`cell_cm`)"
+    )
+
+
+def _check_length(fields: Fields, name: str, text: str, limit: int) -> None:
+    """Text under `name` of at most `limit` characters."""
+    if len(text) > limit and name in fields:
+        raise fields.get(name).error(
+            f"'{name}' is {len(text):,} characters long, more than the {limit:,} it may be; shorten it"
+        )
 
 
 def _block_indent(source_lines: list[str], block_line: int, value_lines: list[str]) -> int:
@@ -211,6 +272,11 @@ def _starts(node: Node, grid: Grid, path: str | None) -> tuple[list[Pose], list[
     items = node.as_list("start", _START_EXAMPLE) if node.is_sequence else [node]
     if not items:
         raise node.error(f"'start' needs at least one pose; write e.g. `{_START_EXAMPLE}`")
+    if len(items) > MAX_STARTS:
+        raise node.error(
+            f"'start' lists {len(items):,} starts; a world has at most {MAX_STARTS} robots "
+            "(docs/world-files.md, Limits); remove some"
+        )
     poses = [_start(item, grid) for item in items]
     robots = [_start_robot(item, path) if path is not None else None for item in items]
     return poses, robots
@@ -229,6 +295,11 @@ def _start(node: Node, grid: Grid) -> Pose:
     heading = fields.number(
         "heading_deg", default=0.0, unit="degrees, 0 = +x, counter-clockwise", example="heading_deg: 90"
     )
+    if not within(heading, ANGLE_DEG):
+        raise fields.get("heading_deg").error(
+            f"'heading_deg' must be {ANGLE_DEG[0]:g} to {ANGLE_DEG[1]:g} degrees (one turn either way; "
+            f"0 = +x, 90 = +y), got {heading:g}; write e.g. `heading_deg: 90`"
+        )
     by_cell = "cell" in fields
     by_cm = "x_cm" in fields or "y_cm" in fields
     if by_cell and by_cm:
@@ -287,6 +358,17 @@ def _regions(
     written = (
         node.as_fields("regions", None, "regions: {goal: {cells: [[1, 1]]}}") if node is not None else None
     )
+    if written is not None and len(written) > MAX_REGIONS:
+        raise node.error(
+            f"'regions' names {len(written):,} regions, more than the {MAX_REGIONS} a world may have "
+            "(docs/world-files.md, Limits); join some"
+        )
+    for name in written or []:
+        if len(name) > MAX_NAME_CHARS or not name.strip() or any(ord(c) < 32 or ord(c) == 127 for c in name):
+            raise written.key(name).error(
+                f"a region's name is 1 to {MAX_NAME_CHARS} characters, not control characters; "
+                "write e.g. `goal:`"
+            )
     regions: dict[str, Region] = {}
     names = list(written or []) + [name for name in legend_cells if written is None or name not in written]
     for name in names:
@@ -307,7 +389,13 @@ def _read_region(node: Node, name: str, grid: Grid, spots: list[tuple[int, int]]
             f"region '{name}' needs `cells` or `rect_cm`; write e.g. `{name}: {example}`", column=False
         )
     if "cells" in fields:
-        for item in fields.get("cells").as_list("cells", "cells: [[1, 1], [2, 1]]"):
+        cell_nodes = fields.get("cells").as_list("cells", "cells: [[1, 1], [2, 1]]")
+        if len(cell_nodes) > MAX_REGION_CELLS:
+            raise fields.get("cells").error(
+                f"region '{name}' lists {len(cell_nodes):,} cells, more than a grid has "
+                f"({MAX_CELLS_PER_SIDE}x{MAX_CELLS_PER_SIDE}); use `rect_cm` for big regions"
+            )
+        for item in cell_nodes:
             col, row = _cell_pair(item, "cells", "cells: [[1, 1], [2, 1]]")
             if not grid.contains(col, row):
                 raise item.error(
@@ -318,6 +406,11 @@ def _read_region(node: Node, name: str, grid: Grid, spots: list[tuple[int, int]]
     if "rects_cm" in fields:
         rect_nodes += fields.get("rects_cm").as_list(
             "rects_cm", "rects_cm: [[0, 0, 20, 20], [40, 0, 60, 20]]"
+        )
+    if len(rect_nodes) > MAX_RECTS_PER_REGION:
+        raise fields.get("rects_cm").error(
+            f"region '{name}' has {len(rect_nodes):,} rectangles, more than the {MAX_RECTS_PER_REGION} a region "
+            "may have (docs/world-files.md, Limits); join some"
         )
     for rect_node in rect_nodes:
         rects.append(_rect(rect_node, name, grid))
@@ -405,6 +498,11 @@ def _robot(node: Node | None, path: str) -> RobotSpec:
     if node.is_mapping:
         return robot_from_mapping(node, source=None if path.startswith("<") else path)
     if node.is_scalar and not node.is_null:
+        if len(node.text) > MAX_PATH_CHARS or "\0" in node.text:
+            raise node.error(
+                f"'robot' names a file by a path of at most {MAX_PATH_CHARS:,} characters (no NUL characters); "
+                "write e.g. `robot: robots/my-bot.yaml`"
+            )
         base_dir = None if path.startswith("<") else Path(path).parent
         found = find_robot(written_path(node.text), base_dir)  # `robots\bot.yaml` from Windows too
         if found is None:

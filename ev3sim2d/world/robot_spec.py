@@ -21,6 +21,23 @@ from pathlib import Path
 from typing import Any
 
 from .colors import EV3_COLORS
+from .file_limits import (
+    ANGLE_DEG,
+    AXLE_TRACK_MM,
+    BODY_MIN_CM,
+    BODY_REACH_CM,
+    LIMITS_DEG,
+    MAX_MOTORS,
+    MAX_NAME_CHARS,
+    MAX_SENSORS,
+    NOISE,
+    ROBOT_FILE,
+    SENSOR_REACH_PAST_BODY_CM,
+    WHEEL_DIAMETER_MM,
+    sensor_option_range,
+    within,
+)
+from .source_error import WorldFileError
 from .yaml_source import Fields, Node, load_yaml_text, read_text_file
 
 MOTOR_PORTS = ("outA", "outB", "outC", "outD")
@@ -178,37 +195,100 @@ _SENSOR_KEYS = ("port", "kind", "angle_deg", "radius_cm", "facing", "aim_deg", "
 
 def load_robot(path: str | Path) -> RobotSpec:
     """Read a robot file."""
-    return parse_robot(read_text_file(path), str(path))
+    return parse_robot(read_text_file(path, ROBOT_FILE), str(path))
 
 
 def parse_robot(text: str, path: str = "<string>") -> RobotSpec:
-    """Read a robot description from YAML text."""
-    node = load_yaml_text(text, path)
+    """Read a robot description from YAML text (a robot file's, or the live page's robot editor's), held to
+    the robot file's limits (file_limits.py)."""
+    node = load_yaml_text(text, path, ROBOT_FILE)
     if not node.is_mapping:
         raise node.error(f"a robot file is a mapping of keys like `name: My robot`, got {node.describe()}")
     return robot_from_mapping(node, source=path)
+
+
+def robot_mapping_text(data: object, path: str = "<string>") -> str:
+    """A robot file's mapping as plain data (the live page's robot editor sends it as JSON) written as a
+    robot file's YAML, for parse_robot.  The data is held to the robot file's limits first, walked without
+    recursion, so a deeply nested or huge request is a WorldFileError, not a RecursionError or a dump of
+    megabytes."""
+    limits = ROBOT_FILE
+    nodes = chars = 0
+    pending = [(data, 1)]
+    while pending:
+        value, depth = pending.pop()
+        nodes += 1
+        if depth > limits.depth or nodes > limits.nodes:
+            raise WorldFileError(
+                path,
+                None,
+                None,
+                f"the robot is nested more than {limits.depth} deep or holds more than {limits.nodes:,} values; "
+                "a robot file is a mapping of a few keys (docs/world-files.md)",
+            )
+        if isinstance(value, dict):
+            pending += [(key, depth + 1) for key in value] + [(item, depth + 1) for item in value.values()]
+        elif isinstance(value, (list, tuple)):
+            pending += [(item, depth + 1) for item in value]
+        elif isinstance(value, str):
+            chars += len(value)
+            if chars > limits.chars:
+                raise WorldFileError(
+                    path,
+                    None,
+                    None,
+                    f"the robot's text is more than {limits.chars:,} characters (a robot file's limit)",
+                )
+        elif value is not None and not isinstance(value, (bool, int, float)):
+            raise WorldFileError(
+                path, None, None, f"a robot holds text, numbers, lists and mappings, not {value!r}"
+            )
+    import yaml
+
+    return yaml.safe_dump(data, sort_keys=False, default_flow_style=None, allow_unicode=True)
 
 
 def robot_from_mapping(node: Node, source: str | None = None, default_name: str = "robot") -> RobotSpec:
     """A robot from a YAML mapping (a robot file, or the inline `robot:` of a maze file)."""
     fields = node.as_fields("robot", _ROBOT_KEYS)
     name = fields.text("name", default=default_name)
-    wheel_diameter = _positive(fields, "wheel_diameter_mm", "mm", "wheel_diameter_mm: 56")
-    axle_track = _positive(fields, "axle_track_mm", "mm", "axle_track_mm: 120")
+    if len(name) > MAX_NAME_CHARS:
+        raise fields.get("name").error(
+            f"'name' is {len(name):,} characters long; a robot's name is at most {MAX_NAME_CHARS}; shorten it"
+        )
+    wheel_diameter = _ranged(
+        fields,
+        "wheel_diameter_mm",
+        "mm",
+        WHEEL_DIAMETER_MM,
+        "wheel_diameter_mm: 56",
+        "LEGO tyres are about 24 to 107 mm across; the EV3 set's is 56 mm",
+    )
+    axle_track = _ranged(
+        fields,
+        "axle_track_mm",
+        "mm",
+        AXLE_TRACK_MM,
+        "axle_track_mm: 120",
+        "two EV3 motors side by side put the wheels at least about 6 cm apart; the EV3 driving base's are "
+        "120 mm apart",
+    )
     body = _body(fields.require("body", "body: {front_cm: 9, back_cm: 7, width_cm: 15}"))
     color = _rgb(fields.get("color")) if "color" in fields else DEFAULT_ROBOT_COLOR
     motors_node = fields.require(
         "motors", "motors: [{port: B, kind: large, wheel: left}, {port: C, kind: large, wheel: right}]"
     )
-    motors = [
-        _motor(item)
-        for item in motors_node.as_list("motors", "motors: [{port: B, kind: large, wheel: left}]")
-    ]
+    motor_items = motors_node.as_list("motors", "motors: [{port: B, kind: large, wheel: left}]")
+    _check_count(motors_node, motor_items, MAX_MOTORS, "motors", "output ports A, B, C and D")
+    motors = [_motor(item) for item in motor_items]
     sensors_node = fields.get("sensors")
     sensor_items = (
         sensors_node.as_list("sensors", "sensors: [{port: 3, kind: color}]") if sensors_node else []
     )
-    sensors = [_sensor(item) for item in sensor_items]
+    if sensors_node is not None:
+        _check_count(sensors_node, sensor_items, MAX_SENSORS, "sensors", "input ports 1, 2, 3 and 4")
+    reach = _sensor_reach(body)
+    sensors = [_sensor(item, reach) for item in sensor_items]
     _check_one_device_per_port(motors_node, motors, sensor_items, sensors)
     _check_wheels(motors_node, motors)
     return RobotSpec(
@@ -223,23 +303,55 @@ def robot_from_mapping(node: Node, source: str | None = None, default_name: str 
     )
 
 
-def _positive(fields: Fields, name: str, unit: str, example: str) -> float:
-    value = fields.number(name, unit=unit, example=example)
-    if value <= 0:
-        raise fields.get(name).error(f"'{name}' must be more than 0 {unit}; write e.g. `{example}`")
+def _ranged(
+    fields: Fields,
+    name: str,
+    unit: str,
+    bounds: tuple[float, float],
+    example: str,
+    why: str,
+    default: Any = None,
+) -> float:
+    """A number under `name` within `bounds` (file_limits.py), else an error giving the range and why."""
+    if default is None:
+        value = fields.number(name, unit=unit, example=example)
+    else:
+        value = fields.number(name, default=default, unit=unit, example=example)
+    if not within(value, bounds):
+        low, high = bounds
+        raise fields.get(name).error(
+            f"'{name}' must be {low:g} to {high:g} {unit}, got {value:g} ({why}); write e.g. `{example}`"
+        )
     return value
+
+
+def _check_count(node: Node, items: list[Node], limit: int, name: str, ports: str) -> None:
+    if len(items) > limit:
+        raise node.error(f"'{name}' lists {len(items):,}; the EV3 has {limit}, on its {ports}")
+
+
+_BODY_WHY = "robots in leagues fit within 25 to 50 cm a side"
 
 
 def _body(node: Node) -> BodySpec:
     fields = node.as_fields(
         "body", ("front_cm", "back_cm", "width_cm"), "body: {front_cm: 9, back_cm: 7, width_cm: 15}"
     )
-    front = fields.number("front_cm", unit="cm", example="front_cm: 9")
-    back = fields.number("back_cm", unit="cm", example="back_cm: 7")
-    width = _positive(fields, "width_cm", "cm", "width_cm: 15")
-    if front + back <= 0:
-        raise node.error("the body needs a length: front_cm + back_cm must be more than 0")
+    reach = (-BODY_REACH_CM, BODY_REACH_CM)
+    front = _ranged(fields, "front_cm", "cm", reach, "front_cm: 9", _BODY_WHY)
+    back = _ranged(fields, "back_cm", "cm", reach, "back_cm: 7", _BODY_WHY)
+    width = _ranged(fields, "width_cm", "cm", (BODY_MIN_CM, BODY_REACH_CM), "width_cm: 15", _BODY_WHY)
+    if front + back < BODY_MIN_CM:
+        raise node.error(
+            f"the body needs a length: front_cm + back_cm must be at least {BODY_MIN_CM:g} cm, "
+            f"got {front + back:g}"
+        )
     return BodySpec(front, back, width)
+
+
+def _sensor_reach(body: BodySpec) -> float:
+    """How far from the centre a sensor may sit: the body's farthest corner and a boom's length past it."""
+    return max(math.hypot(x, y) for x, y in body.corners_cm()) + SENSOR_REACH_PAST_BODY_CM
 
 
 def _rgb(node: Node) -> tuple[int, int, int]:
@@ -313,6 +425,12 @@ def _motor(node: Node) -> tuple[MotorSpec, Node]:
                 f"shaft turns as the robot moves; remove `{name}` or `wheel: {wheel}`"
             )
     limits = _limits(fields.get("limits_deg")) if "limits_deg" in fields else None
+    if limits is not None and not (-LIMITS_DEG <= limits[0] and limits[1] <= LIMITS_DEG):
+        raise fields.get("limits_deg").error(
+            f"'limits_deg' must lie within -{LIMITS_DEG:g} to {LIMITS_DEG:g} degrees (100 turns either way: "
+            f"a winch; an arm turns less than one), got [{limits[0]:g}, {limits[1]:g}]; write e.g. "
+            f"`{_LIMITS_EXAMPLE}`"
+        )
     load = fields.number("load_pct", default=0.0, unit="% of the motor's stall torque", example=_LOAD_EXAMPLE)
     if not 0 <= load <= 100:
         raise fields.get("load_pct").error(
@@ -338,7 +456,7 @@ def _limits(node: Node) -> tuple[float, float]:
     return (low, high)
 
 
-def _sensor(node: Node) -> SensorSpec:
+def _sensor(node: Node, reach: float) -> SensorSpec:
     fields = node.as_fields("sensor", None, "- {port: 3, kind: color, angle_deg: 0, radius_cm: 7}")
     port = _port(fields.require("port", "port: 3"), SENSOR_PORTS, "sensor")
     registry = _sensor_classes()
@@ -358,13 +476,20 @@ def _sensor(node: Node) -> SensorSpec:
             f"only facing {' or '.join(device.FACINGS)}); write `facing: {device.FACINGS[0]}`"
         )
         raise fields.get("facing").error(hint)
-    angle = fields.number("angle_deg", default=0.0, unit="degrees", example="angle_deg: 0")
+    turn = "one turn either way; 0 = straight ahead, 90 = to the left"
+    angle = _ranged(fields, "angle_deg", "degrees", ANGLE_DEG, "angle_deg: 0", turn, default=0.0)
     radius = fields.number("radius_cm", default=0.0, unit="cm", example="radius_cm: 7")
     if radius < 0:
         raise fields.get("radius_cm").error(
             "'radius_cm' is a distance from the robot centre and cannot be negative"
         )
-    aim = fields.number("aim_deg", default=0.0, unit="degrees", example="aim_deg: 90")
+    if radius > reach:
+        raise fields.get("radius_cm").error(
+            f"'radius_cm' must be 0 to {reach:.4g} cm, got {radius:g}: a sensor sits on the robot, at most "
+            f"{SENSOR_REACH_PAST_BODY_CM:g} cm past its body's farthest corner (a boom); move it closer or make "
+            "the body bigger"
+        )
+    aim = _ranged(fields, "aim_deg", "degrees", ANGLE_DEG, "aim_deg: 90", turn, default=0.0)
     if "aim_deg" in fields and facing != "forward":
         raise fields.key("aim_deg").error(
             "'aim_deg' turns a sensor that faces forward; remove it or write `facing: forward`"
@@ -374,11 +499,22 @@ def _sensor(node: Node) -> SensorSpec:
         raise fields.get("noise").error(
             "'noise' is a standard deviation and cannot be negative; 0 turns noise off"
         )
+    if not within(noise, NOISE):
+        raise fields.get("noise").error(
+            f"'noise' must be {NOISE[0]:g} to {NOISE[1]:g}, got {noise:g} (a standard deviation in the sensor's "
+            "own unit: 100 is a colour or infrared reading's whole scale); write e.g. `noise: 0.5`"
+        )
     options: dict[str, float] = {}
-    for option, (default, unit, _meaning) in option_table.items():
+    for option, (default, unit, meaning) in option_table.items():
         value = fields.number(option, default=default, unit=unit, example=f"{option}: {default:g}")
         if value <= 0:
             raise fields.get(option).error(f"'{option}' must be more than 0 {unit}")
+        low, high = sensor_option_range(option, unit)
+        if not low <= value <= high and option in fields:
+            raise fields.get(option).error(
+                f"'{option}' ({meaning}) must be {low:g} to {high:g} {unit}, got {value:g}; "
+                f"write e.g. `{option}: {default:g}`"
+            )
         options[option] = value
     return SensorSpec(port, kind, angle, radius, facing, noise, options, aim)
 

@@ -15,6 +15,17 @@ from dataclasses import dataclass
 
 from .cell import WALL_SHADE, Cell
 from .colors import EV3_COLORS
+from .file_limits import (
+    ANGLE_DEG,
+    CELL_CM,
+    MAX_CELLS_PER_SIDE,
+    MAX_NAME_CHARS,
+    MAX_RECTS_PER_REGION,
+    MAX_REGIONS,
+    MAX_STARTS,
+    MIN_CELLS_PER_SIDE,
+    within,
+)
 from .grid import Grid
 from .maze_reader import read_maze
 from .pose import Pose
@@ -23,12 +34,8 @@ from .region import Region
 from .robot_spec import RobotSpec
 from .yaml_source import Fields, load_yaml_text
 
-MAX_CELLS_PER_SIDE = 200
-MAX_CELL_CM = 1000.0
-MAX_STARTS = 8
-MAX_REGIONS = 100
-MAX_RECTS_PER_REGION = 500
-REGION_NAME = re.compile(r"^[^\x00-\x1f\x7f]{1,60}$")
+MAX_CELL_CM = CELL_CM[1]
+REGION_NAME = re.compile(rf"^[^\x00-\x1f\x7f]{{1,{MAX_NAME_CHARS}}}$")
 SHADE_STEPS = [round(d * 100 / 9) for d in range(10)]
 """The greys lighten and darken step through: those of the default legend's digits 0..9."""
 
@@ -172,21 +179,23 @@ def edited_from_json(data: object) -> EditedWorld:
     if missing:
         raise BadEdit(f"missing field(s) {', '.join(missing)}")
     cell_cm = _number(data["cell_cm"], "cell_cm")
-    if not 0 < cell_cm <= MAX_CELL_CM:
-        raise BadEdit(f"cell_cm must be more than 0 and at most {MAX_CELL_CM:g} cm")
+    if not within(cell_cm, CELL_CM):
+        raise BadEdit(f"cell_cm must be {CELL_CM[0]:g} to {CELL_CM[1]:g} cm (docs/world-files.md, Limits)")
     rows = data["cells"]
     if not isinstance(rows, list) or not rows or not all(isinstance(row, list) for row in rows):
         raise BadEdit("cells must be a list of rows, each a list of cells")
     height, width = len(rows), len(rows[0])
-    if not (3 <= width <= MAX_CELLS_PER_SIDE and 3 <= height <= MAX_CELLS_PER_SIDE):
-        raise BadEdit(f"the grid must be 3 to {MAX_CELLS_PER_SIDE} cells each way, got {width}x{height}")
+    sides = (MIN_CELLS_PER_SIDE, MAX_CELLS_PER_SIDE)
+    if not (within(width, sides) and within(height, sides)):
+        raise BadEdit(f"the grid must be {sides[0]} to {sides[1]} cells each way, got {width}x{height}")
     if any(len(row) != width for row in rows):
         raise BadEdit("every row of cells must have the same length")
     cells = [[_cell(item, col, row) for col, item in enumerate(items)] for row, items in enumerate(rows)]
     starts_data = data["starts"]
     if not isinstance(starts_data, list) or not 1 <= len(starts_data) <= MAX_STARTS:
         raise BadEdit(f"starts must be a list of 1 to {MAX_STARTS} poses")
-    starts = [_pose(item) for item in starts_data]
+    size_cm = (width * cell_cm, height * cell_cm)
+    starts = [_pose(item, size_cm) for item in starts_data]
     regions_data = data["regions"]
     if not isinstance(regions_data, list) or len(regions_data) > MAX_REGIONS:
         raise BadEdit(f"regions must be a list of at most {MAX_REGIONS} regions")
@@ -223,14 +232,19 @@ def _cell(item: object, col: int, row: int) -> EditedCell:
     return EditedCell(cell, char)
 
 
-def _pose(item: object) -> Pose:
+def _pose(item: object, size_cm: tuple[float, float]) -> Pose:
+    """A start inside the grid; a heading past one turn either way is turned back into it."""
     if not isinstance(item, dict) or set(item) != {"x_cm", "y_cm", "heading_deg"}:
         raise BadEdit("a start must be an object with x_cm, y_cm and heading_deg")
-    return Pose(
-        _number(item["x_cm"], "x_cm"),
-        _number(item["y_cm"], "y_cm"),
-        _number(item["heading_deg"], "heading_deg"),
-    )
+    x, y = _number(item["x_cm"], "x_cm"), _number(item["y_cm"], "y_cm")
+    if not (0 <= x <= size_cm[0] and 0 <= y <= size_cm[1]):
+        raise BadEdit(
+            f"a start must lie on the grid (0..{size_cm[0]:g} x 0..{size_cm[1]:g} cm), got {x:g}, {y:g}"
+        )
+    heading = _number(item["heading_deg"], "heading_deg")
+    if not within(heading, ANGLE_DEG):
+        heading = math.remainder(heading, 360.0)
+    return Pose(x, y, heading)
 
 
 def _region(item: object) -> tuple[str, list[Rect]]:
@@ -238,7 +252,9 @@ def _region(item: object) -> tuple[str, list[Rect]]:
         raise BadEdit("a region must be an object with name and rects")
     name, rects = item["name"], item["rects"]
     if not isinstance(name, str) or not REGION_NAME.match(name) or name != name.strip():
-        raise BadEdit(f"region name {name!r} must be 1 to 60 characters, not starting or ending with a space")
+        raise BadEdit(
+            f"region name {name!r} must be 1 to {MAX_NAME_CHARS} characters, not starting or ending with a space"
+        )
     if not isinstance(rects, list) or not 1 <= len(rects) <= MAX_RECTS_PER_REGION:
         raise BadEdit(f"region {name!r} needs 1 to {MAX_RECTS_PER_REGION} rectangles")
     result: list[Rect] = []

@@ -11,6 +11,9 @@ from __future__ import annotations
 import codecs
 import difflib
 import math
+import os
+import re
+import stat
 from collections.abc import Iterable, Iterator
 from pathlib import Path, PureWindowsPath
 from typing import Any
@@ -18,6 +21,7 @@ from typing import Any
 import yaml
 from yaml.constructor import SafeConstructor
 
+from .file_limits import WORLD_FILE, DocumentLimits
 from .source_error import WorldFileError
 
 _MAP_TAG = "tag:yaml.org,2002:map"
@@ -29,6 +33,8 @@ _FLOAT_TAG = "tag:yaml.org,2002:float"
 _STR_TAG = "tag:yaml.org,2002:str"
 
 _REQUIRED: Any = object()
+_EXPONENT_NUMBER = re.compile(r"[-+]?(\d+\.?\d*|\.\d+)[eE][-+]?\d+")
+"""A number with an exponent as people write it (`1e12`, `2.5E-3`), which YAML 1.1 reads as text."""
 
 
 class Node:
@@ -119,6 +125,10 @@ class Node:
                 number = float(self._scalar_value())
             except (TypeError, OverflowError):
                 number = math.inf
+            if math.isfinite(number):
+                return number
+        elif tag == _STR_TAG and self.style is None and _EXPONENT_NUMBER.fullmatch(self.raw.value):
+            number = float(self.raw.value)  # `1e12`: YAML 1.1 reads it as text, a person as a number
             if math.isfinite(number):
                 return number
         kind = f"a number ({unit})" if unit else "a number"
@@ -260,25 +270,115 @@ class Fields:
         return self._values.get(name)
 
 
-def load_yaml_text(text: str, path: str = "<string>") -> Node:
-    """Compose YAML text into a Node tree; syntax errors become WorldFileError with the line."""
+def load_yaml_text(text: str, path: str = "<string>", limits: DocumentLimits = WORLD_FILE) -> Node:
+    """Compose YAML text into a Node tree; syntax errors become WorldFileError with the line.
+
+    The text is held to `limits` (file_limits.py) while it is composed, before anything is built from it:
+    its length, and its nodes, characters and depth as its aliases expand, so neither a deeply nested
+    file nor a small file of anchors that stands for a huge one gets further than its first excess."""
+    if len(text) > limits.chars:
+        raise WorldFileError(path, None, None, _too_long(len(text), limits))
+    loader = _BoundedLoader(text, path, limits)
     try:
-        raw = yaml.compose(text, Loader=yaml.SafeLoader)
+        raw = loader.get_single_node()
     except yaml.MarkedYAMLError as err:
         raise _syntax_error(err, path) from None
     except yaml.YAMLError as err:
         raise WorldFileError(path, None, None, f"this is not readable YAML text ({err})") from None
+    finally:
+        loader.dispose()
     if raw is None:
         raise WorldFileError(path, 1, None, "the file is empty; write its keys, e.g. `title: My world`")
     return Node(raw, path)
 
 
-def read_text_file(path: str | Path) -> str:
+class _BoundedLoader(yaml.SafeLoader):
+    """PyYAML's safe loader whose composer counts as it goes: depth (its composing is recursive, so a
+    deep file would end in RecursionError), and nodes and characters with each alias counted as often
+    as it is used (its aliases share one node, so a bomb costs nothing until something walks it)."""
+
+    def __init__(self, text: str, path: str, limits: DocumentLimits) -> None:
+        super().__init__(text)
+        self._path = path
+        self._limits = limits
+        self._depth = 0
+        self._nodes = 0
+        self._chars = 0
+        self._sizes: dict[int, tuple[int, int]] = {}  # id of an anchored node -> (nodes, chars) it expands to
+
+    def compose_node(self, parent, index):  # noqa: ANN001, ANN201 (PyYAML's signature)
+        mark = self.peek_event().start_mark
+        if self.check_event(yaml.AliasEvent):
+            node = super().compose_node(parent, index)
+            size = self._sizes.get(id(node))
+            if size is None:
+                raise self._refuse(mark, "an alias is used inside the value its anchor names (a loop)")
+            self._count(size[0], size[1], mark)
+            return node
+        anchored = self.peek_event().anchor is not None
+        if self._depth >= self._limits.depth:
+            raise self._refuse(
+                mark,
+                f"values nested more than {self._limits.depth} deep; a {self._limits.kind} needs no more "
+                "than a few levels (docs/world-files.md, Limits)",
+            )
+        nodes_before, chars_before = self._nodes, self._chars
+        self._depth += 1
+        try:
+            node = super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
+        self._count(1, len(node.value) if isinstance(node, yaml.ScalarNode) else 0, mark)
+        if anchored:
+            self._sizes[id(node)] = (self._nodes - nodes_before, self._chars - chars_before)
+        return node
+
+    def _count(self, nodes: int, chars: int, mark: yaml.Mark) -> None:
+        self._nodes += nodes
+        self._chars += chars
+        limits = self._limits
+        if self._nodes > limits.nodes:
+            raise self._refuse(
+                mark,
+                f"the {limits.kind} holds more than {limits.nodes:,} values (aliases counted each time they "
+                "are used); a "
+                f"{limits.kind} needs far fewer: write it out plainly, without anchors and aliases that repeat "
+                "big parts (docs/world-files.md, Limits)",
+            )
+        if self._chars > limits.chars:
+            raise self._refuse(
+                mark,
+                f"the {limits.kind}'s text, with its aliases written out, is more than {limits.chars:,} "
+                "characters; write it out plainly, without anchors and aliases that repeat big parts "
+                "(docs/world-files.md, Limits)",
+            )
+
+    def _refuse(self, mark: yaml.Mark, message: str) -> WorldFileError:
+        return WorldFileError(self._path, mark.line + 1, mark.column + 1, message)
+
+
+def _too_long(size: int, limits: DocumentLimits) -> str:
+    return (
+        f"the {limits.kind} is {size:,} characters long, more than the {limits.chars:,} a {limits.kind} may "
+        "be (docs/world-files.md, Limits); is this the right file?"
+    )
+
+
+def read_text_file(path: str | Path, limits: DocumentLimits = WORLD_FILE) -> str:
     """A file's text as an editor on any system may have saved it: UTF-8 with or without a BOM (or UTF-16
     with one), with Windows, Mac or Unix line endings (each a plain "\\n" in the text, so lines and columns
-    count as an editor counts them).  A missing, unreadable or non-UTF-8 file is a WorldFileError."""
+    count as an editor counts them).  A missing, unreadable, non-UTF-8 file, one that is not a plain file
+    (a device, a pipe) or one longer than `limits.chars` bytes is a WorldFileError; no more than that is
+    read."""
     try:
-        data = Path(path).read_bytes()
+        # a pipe would block an ordinary open until something writes to it: open without waiting, then look
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0))
+        with open(fd, "rb") as file:
+            if not stat.S_ISREG(os.fstat(file.fileno()).st_mode):
+                raise WorldFileError(
+                    str(path), None, None, "this is not a plain file; give the path of a .yaml file"
+                )
+            data = file.read(limits.chars + 1)
     except FileNotFoundError:
         raise WorldFileError(str(path), None, None, "no such file; check the name and folder") from None
     except IsADirectoryError:
@@ -287,6 +387,14 @@ def read_text_file(path: str | Path) -> str:
         ) from None
     except OSError as err:
         raise WorldFileError(str(path), None, None, f"cannot read the file: {err.strerror}") from None
+    if len(data) > limits.chars:
+        raise WorldFileError(
+            str(path),
+            None,
+            None,
+            f"the {limits.kind} is more than {limits.chars:,} bytes, the most a {limits.kind} may be "
+            "(docs/world-files.md, Limits); is this the right file?",
+        )
     return decode_text(data, str(path))
 
 

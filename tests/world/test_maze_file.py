@@ -325,7 +325,7 @@ grid: |
         (GOOD_GRID, 1, None, ["missing key 'start'", "start: {cell:"]),
         ("title: x\nstart: {cell: [1, 1]}\n", 1, None, ["missing key 'grid'"]),
         ("cell_cm: ten\n" + GOOD_GRID, 1, 10, ["'cell_cm' must be a number (cm), got 'ten'"]),
-        ("cell_cm: -4\n" + GOOD_GRID, 1, 10, ["more than 0 cm"]),
+        ("cell_cm: -4\n" + GOOD_GRID, 1, 10, ["1 to 1000 cm"]),
         ("cel_cm: 4\n" + GOOD_GRID, 1, 1, ["unknown key 'cel_cm'", "did you mean 'cell_cm'", "allowed keys"]),
         (GOOD_GRID + "start: {cell: [1, 1]}\nambient: 300\n", 7, 10, ["light level from 0 to 100"]),
         (

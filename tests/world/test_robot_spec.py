@@ -186,7 +186,7 @@ def test_robot_colour_may_be_a_name_hex_or_rgb():
             2,
             ["must be a number (mm), got '56mm'"],
         ),
-        (BASE.replace("axle_track_mm: 120", "axle_track_mm: 0"), 3, ["more than 0 mm"]),
+        (BASE.replace("axle_track_mm: 120", "axle_track_mm: 0"), 3, ["50 to 500 mm"]),
         (BASE.replace("width_cm: 15", "width: 15"), 4, ["unknown key 'width'", "width_cm"]),
         (BASE.replace("axle_track_mm: 120\n", ""), 1, ["missing key 'axle_track_mm'", "axle_track_mm: 120"]),
         (BASE + "color: pinkish\n", 8, ["'color' must be a colour name"]),
