@@ -246,3 +246,18 @@ def test_the_robot_editor_refuses_a_deeply_nested_robot_without_a_traceback(live
     status, answer = live_page("POST", "/api/robot", json.dumps({"robot": 1, "text": text}).encode())
     assert status == 400 and "nested more than 32 deep" in answer["error"], answer
     assert live_page("GET", "/api/state")[0] == 200
+
+
+@needs_wait4
+@pytest.mark.parametrize("name", ["anchor bomb", "nesting bomb"])
+def test_a_lesson_whose_world_is_a_bomb_is_refused_by_grade(tmp_path, name):
+    """A lesson folder from elsewhere (a colleague's, a download) names a hostile world."""
+    import shutil
+
+    lesson = tmp_path / "wall-stop"
+    shutil.copytree(ROOT / "lessons" / "wall-stop", lesson)
+    make, words = WORLDS[name]
+    (lesson / "room.yaml").write_text(make())
+    code, stderr, seconds, peak_kb = command("grade", lesson, lesson / "solution.py", cwd=tmp_path)
+    assert code == 2 and f"{lesson / 'room.yaml'}:" in stderr and words in stderr, stderr
+    assert "Traceback" not in stderr and seconds < TIME_CEILING_S and peak_kb < MEMORY_CEILING_KB
