@@ -36,6 +36,7 @@ from ..simulator.run import (
     shown_file,
 )
 from ..simulator.session import Session
+from ..simulator.simulation import check_place
 from ..world.cell import Cell
 from ..world.maze_file import parse_maze
 from ..world.pose import Pose
@@ -500,6 +501,7 @@ class LiveRun:
 
     def _move(self, index: int, x_cm: float, y_cm: float, heading_deg: float) -> None:
         self._check_index(index)
+        check_place(self.world, index, x_cm, y_cm, heading_deg)  # (also where the run is over)
         if self._session is not None:
             self._sim.place_robot(index, x_cm, y_cm, heading_deg)
         self.starts[index] = Pose(x_cm, y_cm, heading_deg)  # where a reload starts it

@@ -145,10 +145,10 @@ class Simulation:
         event 'place'), so that a replay shows the jump.  ValueError where its body would be in a wall
         or outside the world (it is not moved then)."""
         robot = self.robots[index]
+        check_place(self.world, index, x_cm, y_cm, heading_deg)
         before = robot.x, robot.y, math.degrees(robot.heading_rad)
         robot.place(x_cm, y_cm, heading_deg)
-        width, height = self.world.grid.size_cm
-        if not (0 <= x_cm <= width and 0 <= y_cm <= height) or self.physics.overlaps_wall(robot.body):
+        if self.physics.overlaps_wall(robot.body):
             robot.place(*before)
             raise ValueError(
                 f"robot {index + 1} cannot stand at ({x_cm:.1f}, {y_cm:.1f}) cm: it would be in a wall"
@@ -242,3 +242,16 @@ class Simulation:
 
     def motor_states(self, robot: Robot) -> dict[str, str]:
         return {port: state_text(m.state_bits) for port, m in robot.motors.items()}
+
+
+def check_place(world: World, index: int, x_cm: float, y_cm: float, heading_deg: float) -> None:
+    """ValueError, saying why, for a place no robot can be put at: outside the world, or a heading beyond a
+    turn either way (as a world file's start: world/file_limits.py); NaN is neither."""
+    width, height = world.grid.size_cm
+    if not (0 <= x_cm <= width and 0 <= y_cm <= height):
+        raise ValueError(
+            f"robot {index + 1} cannot stand at ({x_cm:.4g}, {y_cm:.4g}) cm: outside the world "
+            f"(x 0 to {width:g}, y 0 to {height:g} cm)"
+        )
+    if not -360 <= heading_deg <= 360:
+        raise ValueError(f"a heading of {heading_deg:.4g} degrees: give one from -360 to 360")

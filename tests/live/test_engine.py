@@ -126,3 +126,27 @@ def test_a_program_that_fails_pauses_the_run_with_its_file_and_line(started, tmp
     live.reload()
     state = _wait_for(live, lambda s: s["run"] == 2 and s["status"] == "ended")
     assert state["error"] is None and [p["text"] for p in state["printed"]] == ["fixed"]
+
+
+def test_a_robot_put_outside_the_world_or_turned_absurdly_is_refused_and_the_run_goes_on(started, tmp_path):
+    """A place the page (or anything with the page's key) asks for is checked before the physics sees it,
+    while the run goes and once it is over: outside the world, 1e308 or NaN, a heading beyond a turn."""
+    program = tmp_path / "drive.py"
+    program.write_text(textwrap.dedent(DRIVE))
+    live = started([program], arena(), speed=None, paused=True, time_limit_s=1)
+    _wait_for(live, lambda s: s["status"] == "paused" and s["robots"])
+    for x, y, heading, said in [
+        (1e308, 60, 0, "outside the world"),
+        (float("nan"), 60, 0, "outside the world"),
+        (60, 60, 1e308, "from -360 to 360"),
+        (-5, 60, 0, "outside the world"),
+    ]:
+        with pytest.raises(LiveError, match=said):
+            live.move_robot(0, x, y, heading)
+    live.resume()
+    _wait_for(live, lambda s: s["status"] == "ended")
+    with pytest.raises(LiveError, match="outside the world"):  # (a new run would start from there)
+        live.move_robot(0, 1e300, 60, 0)
+    live.move_robot(0, 60, 60, 90)
+    robot = _wait_for(live, lambda s: s["run"] == 2 and s["robots"])["robots"][0]
+    assert (robot["x_cm"], robot["y_cm"]) == pytest.approx((60, 60))

@@ -490,7 +490,7 @@
   }
 
   function setCellCm(value) {
-    if (!(value > 0 && value <= 1000)) return say("The cell size is more than 0 and at most 1000 cm.", "error");
+    if (!(value >= 1 && value <= 1000)) return say("The cell size is from 1 to 1000 cm.", "error");
     const k = value / state.cell_cm;
     change(() => {
       state.cell_cm = value;
