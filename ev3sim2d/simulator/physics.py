@@ -73,6 +73,13 @@ class RobotBody:
         # the sum of the wheel motors' power in %, and how hard its stopped wheels hold, in %
         self.push_pct = 0.0
         self.hold_pct = 0.0
+        # Chipmunk's arbiters of its contacts now (begin to separate), and what they say, read at most once
+        # a tick (`contacts_now`): the walls' normals, and the robots touched with the normal toward each
+        self.arbiters: dict = {}
+        self._read = False
+        self._wall_normals: list[tuple[float, float]] = []
+        self._robot_contacts: list[tuple[RobotBody, float, float]] = []
+        self._robot_of: dict = {}  # every robot's shape (Chipmunk's pointer) -> its RobotBody (Physics')
 
     def drive(self, speed: float, heading: float, turn_rate: float) -> None:
         """Move at speed (cm/s) along heading (rad) while turning at turn_rate (rad/s)."""
@@ -104,20 +111,40 @@ class RobotBody:
         if body.space is not None:
             body.space.reindex_shapes_for_body(body)
 
+    def contacts_now(self) -> tuple[list[tuple[float, float]], list[tuple[RobotBody, float, float]]]:
+        """The normals (out of the robot) of the walls it touches, and the robots it touches with the normal
+        toward each, in the order of Chipmunk's arbiter list of its body (what each_arbiter gives), read
+        from Chipmunk's structs once between two steps (Physics.step marks them stale)."""
+        if not self._read:
+            self._read = True
+            walls, robots = self._wall_normals, self._robot_contacts
+            walls.clear()
+            robots.clear()
+            if self.arbiters:
+                body, robot_of = self._cp_body, self._robot_of
+                arbiter = next(iter(self.arbiters))  # one of the body's list: back to its head, then along
+                while True:
+                    before = arbiter.thread_a.prev if arbiter.body_a == body else arbiter.thread_b.prev
+                    if before == _NULL:
+                        break
+                    arbiter = before
+                while arbiter != _NULL:
+                    n = arbiter.n  # points from shape a to shape b
+                    if arbiter.body_a == body:
+                        other, nx, ny, arbiter = arbiter.b, n.x, n.y, arbiter.thread_a.next
+                    else:
+                        other, nx, ny, arbiter = arbiter.a, -n.x, -n.y, arbiter.thread_b.next
+                    them = robot_of.get(other)
+                    if them is None:
+                        walls.append((nx, ny))
+                    else:
+                        robots.append((them, nx, ny))
+        return self._wall_normals, self._robot_contacts
+
     def _unblocked(self, vx: float, vy: float) -> tuple[float, float]:
         """The velocity less its components into the walls the robot touches (other robots are
         pushed: Physics._push)."""
-        normals = []
-        shape = self.shape
-
-        def collect(arbiter: pymunk.Arbiter) -> None:
-            a, b = arbiter.shapes
-            if (b if a is shape else a).collision_type != WALL:
-                return
-            n = arbiter.normal  # points from shapes[0] to shapes[1]
-            normals.append((n.x, n.y) if a is shape else (-n.x, -n.y))
-
-        self.body.each_arbiter(collect)
+        normals = self.contacts_now()[0]
         for _ in range(2):  # twice, for corners
             for nx, ny in normals:
                 into = vx * nx + vy * ny
@@ -147,6 +174,7 @@ class Physics:
         self._cone_queries: dict[int, Callable[..., float | None]] = {}  # per robot group: cone()
         self.robots: dict[pymunk.Body, RobotBody] = {}
         self.robot_pairs = 0  # robot-robot contacts now, twice (once from each robot)
+        self._robot_of: dict = {}  # each robot's shape, as Chipmunk's pointer, -> its RobotBody
 
     def set_walls(self, wall_rectangles: list[tuple[float, float, float, float]]) -> None:
         """Replace the walls (a cell edited during a live run)."""
@@ -178,6 +206,8 @@ class Physics:
         shape.filter = self._filters[group] = pymunk.ShapeFilter(group=group)
         self.space.add(body, shape)
         robot = RobotBody(body, shape, group)
+        robot._robot_of = self._robot_of
+        self._robot_of[shape._shape] = robot
         self.robots[body] = robot
         return robot
 
@@ -202,6 +232,11 @@ class Physics:
             robot = self.robots.get(mine.body)
             if robot is None:
                 continue
+            if change > 0:
+                robot.arbiters[arbiter._arbiter] = None
+            else:
+                robot.arbiters.pop(arbiter._arbiter, None)
+            robot._read = False
             robot.contacts = max(robot.contacts + change, 0)
             if other.collision_type == ROBOT:
                 robot.robots_touching = max(robot.robots_touching + change, 0)
@@ -217,25 +252,18 @@ class Physics:
         if self.robot_pairs:
             self._push()
         lib.cpSpaceStep(self._cp_space, dt)
+        for robot in self.robots.values():  # their contacts are read afresh after each step
+            robot._read = False
 
     def _push(self) -> None:
         """Settle, for each pair of touching robots, how fast they move along the line between
         them; their velocities (set by drive) are what their wheels want, less the walls."""
         pairs = []
         for robot in self.robots.values():  # in the order the robots were added: deterministic
-            if not robot.robots_touching:
-                continue
-
-            def collect(arbiter: pymunk.Arbiter, robot: RobotBody = robot) -> None:
-                a, b = arbiter.shapes
-                them = self.robots.get((b if a is robot.shape else a).body)
-                if them is None or them.group < robot.group:
-                    return  # a wall, or a pair already taken from the other side
-                n = arbiter.normal  # from shapes[0] to shapes[1]
-                nx, ny = (n.x, n.y) if a is robot.shape else (-n.x, -n.y)
-                pairs.append((robot, them, nx, ny))
-
-            robot.body.each_arbiter(collect)
+            if robot.robots_touching:
+                for them, nx, ny in robot.contacts_now()[1]:
+                    if them.group > robot.group:  # (a pair is taken from the robot added first)
+                        pairs.append((robot, them, nx, ny))
         for a, b, nx, ny in pairs:
             _push_pair(a, b, nx, ny)
 
@@ -376,7 +404,7 @@ class Physics:
             probe.body = self.space.static_body
             probe.filter = self._filters[group]
         probe.unsafe_set_endpoints((x0, y0), (x1, y1))
-        return bool(self.space.shape_query(probe))
+        return bool(_anything_in(self._cp_space, probe._shape, _NULL, _NULL))  # (no shape is a sensor)
 
     def near(self, x: float, y: float, reach_cm: float, group: int) -> bool:
         """Whether a wall or another robot is within reach_cm of (x, y)."""

@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""How the cost of a run grows with its robots (issue 28), measured in one run on this machine.
+
+For 1, 2 and 4 robots in mazes/sumo-4.yaml:
+- the world alone: the robots' motors driven as examples/sumo.py drives them (turn on the spot, charge
+  at what the ultrasonic sensor sees within 70 cm, back off and turn away from the black line), every
+  sensor of every robot read every tick, in this process (no program, no brick);
+- with their bricks: N copies of examples/sumo.py, each in its sandboxed brick (run_programs);
+each as a multiple of real time (simulated seconds per wall second, the best of --repeat), and per row
+the cost of N robots relative to one (world alone: the one-robot figure / the N-robot one) and what is
+left of the world's speed with the bricks (with bricks / world alone).
+
+Targets (issue 28): four robots' world at most 3.5x the cost of one; four bricks at least 0.6 of the
+world alone's speed.  The machine may be shared: compare the ratios of one run.
+Run:  python benchmarks/robots.py [--seconds 30] [--world-seconds 120] [--repeat 2] [--robots 1 2 4]
+      [--world-only] [--cpu]   (--cpu: the world alone timed by the process's CPU time, on a loaded machine)
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+
+from ev3sim2d.simulator.run import new_simulation, run_programs
+from ev3sim2d.world.maze_file import find_maze, load_maze
+
+ROOT = Path(__file__).resolve().parents[1]
+SUMO = ROOT / "examples" / "sumo.py"
+WORLD = "sumo-4"
+BORDER = 30  # as examples/sumo.py: reflected light below this is the ring's black line
+SEES_MM = 700  # ... and something nearer than 70 cm ahead is another robot (US-DIST-CM reads mm)
+
+
+class SumoDriver:
+    """examples/sumo.py's loop, written against one robot's devices: it reads every sensor each tick and
+    writes its motors only when what it does changes (as the shim sends only what changed)."""
+
+    def __init__(self, robot) -> None:
+        self.left, self.right = robot.left, robot.right
+        self.sensors = list(robot.sensors.values())
+        self.floor = next(s for s in self.sensors if s.spec.kind == "color")
+        self.eyes = next(s for s in self.sensors if s.spec.kind == "ultrasonic")
+        self.doing = ""
+
+    def _run(
+        self, doing: str, command: str, left: int, right: int, setting: str = "", value: int = 0
+    ) -> None:
+        """Both wheels at left and right % of max_speed (a setting, such as time_sp, for each)."""
+        if doing == self.doing:
+            return
+        self.doing = doing
+        for motor, speed in ((self.left, left), (self.right, right)):
+            motor.write("speed_sp", str(speed * motor.max_speed // 100))
+            if setting:
+                motor.write(setting, str(value if speed >= 0 or setting == "time_sp" else -value))
+            motor.write("command", command)
+
+    def _moving(self) -> bool:
+        return "running" in self.left.read("state") or "running" in self.right.read("state")
+
+    def tick(self) -> None:
+        for sensor in self.sensors:
+            sensor.values()
+        if self.doing in ("back", "turn") and self._moving():
+            return  # a blocking move of the program: on_for_seconds, on_for_degrees
+        if self.doing == "back":
+            self._run("turn", "run-to-rel-pos", 50, -50, "position_sp", 200)  # on_for_degrees(50, -50, 200)
+        elif self.floor.values()[0] < BORDER:
+            self._run("back", "run-timed", -50, -50, "time_sp", 600)
+        elif self.eyes.values()[0] < SEES_MM:
+            self._run("charge", "run-forever", 100, 100)
+        else:
+            self._run("look", "run-forever", 25, -25)
+
+
+def world_alone(world, robots: int, seconds: float, clock=time.perf_counter) -> float:
+    """Real-time factor of the world stepping `robots` sumo robots, all their sensors read every tick
+    (by `clock`: the wall clock, or this process's CPU time, steadier on a loaded machine)."""
+    sim, _ = new_simulation(world, robots, None, 0, None)
+    drivers = [SumoDriver(robot) for robot in sim.robots]
+    ticks = int(round(seconds * 1e6 / sim.tick_us))
+    start = clock()
+    now = 0
+    for _ in range(ticks):
+        now += sim.tick_us
+        sim.tick(now)
+        for driver in drivers:
+            driver.tick()
+    return seconds / (clock() - start)
+
+
+def with_bricks(world, robots: int, seconds: float) -> float:
+    """Real-time factor of `robots` copies of examples/sumo.py in their sandboxed bricks (run time only)."""
+    result = run_programs([SUMO] * robots, world, time_limit_s=seconds)
+    assert result.status == "time_limit", result.reason
+    return result.sim_time_s / result.wall_time_s
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=30.0, help="simulated seconds of a run with bricks")
+    parser.add_argument("--world-seconds", type=float, default=120.0, help="simulated seconds, world alone")
+    parser.add_argument("--repeat", type=int, default=2, help="measurements of each; the best is reported")
+    parser.add_argument("--robots", type=int, nargs="+", default=[1, 2, 4], help="rows: numbers of robots")
+    parser.add_argument("--world-only", action="store_true", help="measure the world alone (no bricks)")
+    parser.add_argument(
+        "--cpu", action="store_true", help="the world alone by this process's CPU time, not the wall clock"
+    )
+    args = parser.parse_args()
+    clock = time.process_time if args.cpu else time.perf_counter
+    world = load_maze(find_maze(WORLD))
+    rows = []
+    for n in args.robots:
+        alone = max(world_alone(world, n, args.world_seconds, clock) for _ in range(args.repeat))
+        bricks = None
+        if not args.world_only:
+            bricks = max(with_bricks(world, n, args.seconds) for _ in range(args.repeat))
+        rows.append((n, alone, bricks))
+    one = rows[0][1] if rows[0][0] == 1 else None
+    clocked = "world alone by CPU time" if args.cpu else "wall clock"
+    print(f"{WORLD}, examples/sumo.py; best of {args.repeat}; x real time ({clocked})")
+    print(
+        "| robots | world alone | with their bricks | cost vs one robot (world alone) | bricks / world alone |"
+    )
+    print("|---|---|---|---|---|")
+    for n, alone, bricks in rows:
+        cost = f"{one / alone:.2f}x" if one else "-"
+        with_b = f"{bricks:.0f}x" if bricks is not None else "-"
+        share = f"{bricks / alone:.2f}" if bricks is not None else "-"
+        print(f"| {n} | {alone:.0f}x | {with_b} | {cost} | {share} |")
+    print("targets: four robots' world at most 3.5x one robot's cost; four bricks at least 0.6 of the world")
+    print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.2f} (the figures move with it)")
+
+
+if __name__ == "__main__":
+    main()
