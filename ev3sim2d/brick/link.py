@@ -351,7 +351,9 @@ class BrickLink:
         As scheduler.wait does, the value is looked at at each tick, in that tick's snapshot; where nothing
         else can happen meanwhile (see _quiet_until), the simulator looks at it instead ("u"), and the
         brick hears of the world again only at the tick where it changed, or at the last tick before the
-        timeout: the same ticks, the same values, without a hand-over each tick."""
+        timeout: the same ticks, the same values, without a hand-over each tick.  (A hand-over, a message
+        each way with the other side woken, costs 10-15 µs on one core and 60-70 µs across two on the
+        2-core machines measured, as much as the world's tick of one robot: a wait of 100 ms saves ten.)"""
         self._task()
         before = self._value(class_name, device_name, attribute)
         timeout_us = None if timeout_ms is None else int(timeout_ms * 1000)
