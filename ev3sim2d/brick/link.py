@@ -30,6 +30,10 @@ already, unless the program ran two ticks ahead of the world without reading),
 so it runs at most two ticks ahead of the world even when it reads nothing, and
 hears the simulator's stop (its time limit, a hang, Ctrl-C) at the same point
 of the program in every run: where the program was is the same each time.
+A poll (a wait for a motor's `state` to change, python-ev3dev2's and Pybricks'
+waits for a move) need not hear of every tick: it tells the simulator the value
+it waits on (a quiet wait, op "u"), and hears of the world again only at the
+tick where the value changed, or at the poll's timeout (`poll`).
 While the program's thread is stuck outside the simulation (a real lock, a
 pipe), another thread may look (`stop_waiting`), so that the brick can still
 say where it was.

@@ -3,7 +3,10 @@
 Each brick runs ahead on its own clock and says when it passes a tick (a tick
 marker).  The world steps to a tick only once every brick still running has
 passed it (conservative lockstep, as in parallel discrete-event simulation),
-and the bricks waiting there get their snapshot.  Between ticks a brick's ops
+and the bricks waiting there get their snapshot.  A brick in a quiet wait (op "u":
+it waits for a value of its robot to change) is not waited for: the world runs on,
+taking its snapshot each tick as for any brick, and stops at the tick where the
+value changed, where the brick goes on (BrickPort.wakes).  Between ticks a brick's ops
 touch only its own robot's devices, so the bricks' ops between two ticks can
 be applied brick by brick: the run depends only on what the programs do, never
 on which process was faster.  The simulator never waits for a brick that is
