@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.protocol import decode, encode
+from ev3sim2d.protocol import PROTOCOL, decode, encode
 from ev3sim2d.protocol.joining import join_message
 
 REPO = Path(__file__).resolve().parent.parent
@@ -312,7 +312,7 @@ def test_a_brick_that_stalls_mid_run_is_dropped_as_hung_and_the_run_goes_on(serv
     stalled = FakeJoin(served.address)
     seat = stalled.join(robot=1)
     assert seat[0] == "seat" and seat[1]["robot"] == "robot1" and seat[1]["tick_us"] == 10_000
-    stalled.send(["hello", {"protocol": 1, "sandbox": {}}])
+    stalled.send(["hello", {"protocol": PROTOCOL, "sandbox": {}}])
     ender = _join(served.address, _program(tmp_path, "ender.py", TALKER.format(seconds=5)), cwd=tmp_path)
     assert stalled.receive()[0] == "snap"  # the run started; this brick now says nothing at all
     out, err = ender.communicate(timeout=120)
@@ -328,7 +328,7 @@ def test_nonsense_from_a_seated_brick_mid_run_drops_only_that_robot(serve, tmp_p
     served = serve("--maze", "line-shared", "--robots", "2", "--time", "30", "--summary", "served.json")
     rogue = FakeJoin(served.address)
     assert rogue.join(robot=2)[0] == "seat"
-    rogue.send(["hello", {"protocol": 1, "sandbox": {}}])
+    rogue.send(["hello", {"protocol": PROTOCOL, "sandbox": {}}])
     ender = _join(served.address, _program(tmp_path, "ender.py", TALKER.format(seconds=3)), cwd=tmp_path)
     assert rogue.receive()[0] == "snap"
     rogue.sock.sendall(b'["ops", [["w", 999, "x"]]]\n{not json\n')

@@ -87,6 +87,7 @@ class BrickRun:
         config = self.config
         self.scheduler = Scheduler(config["tick_us"], self._tick, config.get("limit_us"), batch_ticks=True)
         self.link = BrickLink(self.channel, self.scheduler)
+        self.link.quiet = config.get("quiet", True) is not False
         self.env = BrickEnvironment(
             self.scheduler,
             self.link,

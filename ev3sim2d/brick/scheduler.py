@@ -148,6 +148,12 @@ class Scheduler:
             self.next_tick_us += tick_us
         self.now_us = target_us
 
+    def jump(self, tick_us: int) -> None:
+        """Move the clock to a tick the connection has already passed with the simulator (a quiet wait,
+        brick/link.py): no tick runs on the way."""
+        self.now_us = tick_us
+        self.next_tick_us = tick_us + self.tick_us
+
     def end(self, reason: str) -> None:
         """End the run; tasks that run again get RunOver.  Unless it finished, say where the tasks were."""
         if not self.over:

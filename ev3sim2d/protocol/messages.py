@@ -1,4 +1,4 @@
-"""The messages of the brick protocol, version 1: one JSON array per message, its kind first.
+"""The messages of the brick protocol, version 2: one JSON array per message, its kind first.
 
 A brick (the student's program, its threads, the ev3dev2 shim and the brick's
 virtual clock) and the simulator (the world, the devices, the trace) talk in
@@ -25,6 +25,11 @@ Ops (inside "ops")
                                            ["w", key, value, t_us] when its time is recorded (LEDs)
     ["W", key, value]                      write, answered [error or null, the attribute's write rule]
     ["t", tick_us]                         the brick's clock passed this tick (the last of several)
+    ["u", first, last, key, value]         a quiet wait (version 2): the clock passes the ticks first,
+                                           first + tick, ... last while the live key's value in each
+                                           tick's snapshot is `value`; the simulator sends only the
+                                           snapshot of the tick where it is not (or of last): the brick
+                                           is there.  first's snapshot was sent already (the brick looks)
     ["R", key]                             read, answered [kind, value]; kind "constant", "setting"
                                            (changes only when the program writes the device) or
                                            "live" (from now on in every snapshot and reply)
@@ -43,7 +48,7 @@ from __future__ import annotations
 
 import json
 
-PROTOCOL = 1
+PROTOCOL = 2
 MAX_MESSAGE_BYTES = 8 * 2**20  # one message; a brick that sends more is cut off
 
 _encoder = json.JSONEncoder(ensure_ascii=False, separators=(",", ":"), check_circular=False)

@@ -231,6 +231,10 @@ class BrickPort:
         self._subscribed: set[int] = set()
         self._live_readers: list = []  # the subscribed attributes' readers, in the same order
         self.marker: int | None = None  # a tick the brick passed that the world has not reached
+        # a quiet wait (op "u"): (its last tick, the watched value's place in a snapshot, the value the brick
+        # waits to change); the session looks at each snapshot for it (wakes) and sends only the one it wakes at
+        self.quiet: tuple[int, int, object] | None = None
+        self.snapped: tuple[int, list] = (-1, [])  # the last snapshot taken: its label and values
         self.declared = 0  # the last tick marker applied: the brick's clock is past it
         self.time_us = 0  # the brick's clock as far as the simulator knows
         self.time_limit_us: int | None = None  # the run's (the session says): no clock earns ops past it
@@ -345,6 +349,9 @@ class BrickPort:
                 if tick > world_us:
                     self.marker = tick
                     return
+            elif kind == "u":
+                if self._quiet(op, world_us):
+                    return
             elif kind == "p":
                 self._print(op)
             elif kind == "@":
@@ -371,6 +378,44 @@ class BrickPort:
                 return
             else:
                 raise ProtocolError(f"unknown op {str(kind)[:50]!r}")
+
+    def _quiet(self, op: list, world_us: int) -> bool:
+        """["u", first, last, key, value]: the brick's clock passes the ticks from first to last, as long as
+        the key's value in each tick's snapshot is `value`.  The first tick's snapshot is taken already (the
+        brick looks at it itself): where it differs, this is a tick marker at first; else the brick is quiet
+        until the session wakes it (wakes).  True when the world must reach first before more is applied."""
+        if len(op) != 5 or not all(type(x) is int for x in op[1:4]):
+            raise ProtocolError("a quiet wait is [u, first tick, last tick, key, value]")
+        first, last, key, value = op[1], op[2], op[3], op[4]
+        if first < self.time_us or first <= world_us or last < first or last > MAX_TIME_US:
+            raise ProtocolError(f"quiet wait from {first} to {str(last)[:30]} goes back in time")
+        if key not in self._subscribed:
+            raise ProtocolError("a quiet wait watches a value the brick reads in its snapshots")
+        at = self.subscribed.index(key)
+        label, values = self.snapped
+        if label != first or at >= len(values):
+            raise ProtocolError("a quiet wait starts at the tick of the last snapshot, on a value in it")
+        self.time_us = self.declared = first
+        if values[at] == value and first < last:
+            self.quiet = (last, at, value)
+            self.marker = last
+        else:
+            self.marker = first
+        return True
+
+    def wakes(self, label_us: int) -> bool:
+        """A quiet brick, after the world's tick before label_us: the snapshot is taken (as for a brick that
+        waits tick by tick, so sensors are sampled at the same ticks); sent, and True, if the watched value
+        changed in it or label_us is the wait's last tick."""
+        values = self.values()
+        self.snapped = (label_us, values)
+        last, at, value = self.quiet
+        if label_us < last and values[at] == value:
+            return False
+        self.quiet = None
+        self.time_us = self.declared = self.marker = label_us
+        self.send(["snap", label_us, values])
+        return True
 
     def _answer(self, answer) -> None:
         if len(self._answers) >= PENDING_REQUESTS:
@@ -630,4 +675,6 @@ class BrickPort:
     # ------------------------------------------------------------- snapshots
     def snapshot(self, label_us: int) -> None:
         """Send the values now, to serve the brick's reads from label_us for one tick."""
-        self.send(["snap", label_us, self.values()])
+        values = self.values()
+        self.snapped = (label_us, values)
+        self.send(["snap", label_us, values])

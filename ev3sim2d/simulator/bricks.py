@@ -60,6 +60,9 @@ SPIN_S = 0.002  # how long a side spins before it sleeps: waking a sleeper costs
 START_TIMEOUT_S = 60.0  # a brick on loopback TCP must connect within this much real time
 SEND_TIMEOUT_S = 10.0  # a brick that takes nothing the simulator sends for this long is dropped
 PORTABLE = "EV3SIM2D_PORTABLE"
+# EV3SIM2D_EVERY_TICK=1: every brick hears of every tick it waits through, as before quiet waits (protocol 2's
+# "u"): the same run, fingerprint for fingerprint, for tests and benchmarks to compare.
+EVERY_TICK = "EV3SIM2D_EVERY_TICK"
 _compiled = False
 _running: set[int] = set()  # pids of the bricks this process runs now
 _brick_sessions: set[int] = set()  # the sessions of every brick this process started (each leads its own)
@@ -522,6 +525,7 @@ def brick_welcome(
             "program_dirs": [bricks_path(ran.parent)],
             "argv": [ran.name, *(str(a) for a in arguments)],
             "debug": debug,
+            "quiet": os.environ.get(EVERY_TICK) != "1",
             "shim_root": bricks_path(shim_root()),
             "site_packages": [bricks_path(p) for p in site_packages()],
             "sandbox": {

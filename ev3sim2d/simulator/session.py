@@ -3,7 +3,10 @@
 Each brick runs ahead on its own clock and says when it passes a tick (a tick
 marker).  The world steps to a tick only once every brick still running has
 passed it (conservative lockstep, as in parallel discrete-event simulation),
-and the bricks waiting there get their snapshot.  Between ticks a brick's ops
+and the bricks waiting there get their snapshot.  A brick in a quiet wait (op "u":
+it waits for a value of its robot to change) is not waited for: the world runs on,
+taking its snapshot each tick as for any brick, and stops at the tick where the
+value changed, where the brick goes on (BrickPort.wakes).  Between ticks a brick's ops
 touch only its own robot's devices, so the bricks' ops between two ticks can
 be applied brick by brick: the run depends only on what the programs do, never
 on which process was faster.  The simulator never waits for a brick that is
@@ -86,8 +89,9 @@ class Session:
             port.time_limit_us = limit_us
         Mailboxes(ports, sim.tick_us)  # (Bluetooth between these bricks: port.mailboxes)
 
-    def _step_to(self, target_us: int) -> None:
-        """Run the world's ticks up to target_us; after each, the snapshots bricks will need."""
+    def _step_to(self, target_us: int) -> int:
+        """Run the world's ticks up to target_us; after each, the snapshots bricks will need.  A quiet brick
+        that wakes at a tick (its value changed) stops the world there: returns where the world is."""
         tick = self.sim.tick
         step = self.sim.tick_us
         while self.next_tick_us <= target_us:
@@ -95,10 +99,13 @@ class Session:
             tick(now)
             self.next_tick_us += step
             self.world_us = now
-            self._snapshots(now)
+            woke = self._snapshots(now)
+            if woke is not None and woke < target_us:
+                target_us = woke
         self.world_us = target_us
         if self.printed:
             self._echo(target_us)
+        return target_us
 
     def _echo(self, until_us: int | None) -> None:
         """Show the printed lines up to until_us (all: None) in time order, robot by robot."""
@@ -115,14 +122,22 @@ class Session:
             for line in shown:
                 self.echo(line)
 
-    def _snapshots(self, tick_us: int) -> None:
+    def _snapshots(self, tick_us: int) -> int | None:
         """After the tick at tick_us: a brick in [tick_us, +tick) will read from this snapshot next tick;
         one that jumped to tick_us + tick (a sleep) needs it at once.  Always taken, sent or not, so that
-        the record never depends on which process was faster."""
+        the record never depends on which process was faster.  A quiet brick's is taken each tick too,
+        and sent only if it wakes it (BrickPort.wakes): returns that tick, if one woke."""
         label = tick_us + self.sim.tick_us
+        woke = None
         for port in self.ports:
-            if not port.finished and port.declared in (tick_us, label):
+            if port.finished:
+                continue
+            if port.quiet is not None:
+                if self._apply(port, lambda port=port: port.wakes(label)):
+                    woke = label
+            elif port.declared in (tick_us, label):
                 self._apply(port, lambda port=port: port.snapshot(label))
+        return woke
 
     def drop(self, port: BrickPort, why: str) -> None:
         """End a brick's part in the run (it broke the protocol or a budget, went away, or hung)."""
@@ -278,20 +293,26 @@ class Session:
                 self._wait([port])
                 continue
             if limit is not None and target >= limit:
-                return self._stop_at_limit([port])
+                if self._stop_at_limit([port]):
+                    return
+                target = self.world_us
             if self._paused_before(target):
                 return
             self._step_to(target)
             port.marker = None
             port.stalled_s = 0.0  # (it waited for the world: not its own time)
 
-    def _stop_at_limit(self, live: list[BrickPort]) -> None:
-        """Every brick still running has passed the time limit: the world runs to it, and the run ends."""
-        self._step_to(self.limit_us)
+    def _stop_at_limit(self, live: list[BrickPort]) -> bool:
+        """Every brick still running has passed the time limit: the world runs to it, and the run ends
+        (True); unless a quiet brick wakes before it (False: the world is where it woke, a tick its marker
+        is at)."""
+        if self._step_to(self.limit_us) < self.limit_us:
+            return False
         for port in live:
             port.time_us = self.limit_us
             port.end = {"t_us": self.limit_us, "status": "time_limit", "error": None}
             self.drop(port, "time limit")
+        return True
 
     def _run(self) -> None:
         ports = self.ports
@@ -314,10 +335,12 @@ class Session:
             if not behind:
                 target = min(p.marker for p in live)
                 if limit is not None and target >= limit:
-                    return self._stop_at_limit(live)
+                    if self._stop_at_limit(live):
+                        return
+                    target = self.world_us
                 if self._paused_before(target):
                     return
-                self._step_to(target)
+                target = self._step_to(target)
                 for port in live:
                     if port.marker == target:
                         port.marker = None

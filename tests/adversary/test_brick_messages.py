@@ -47,7 +47,7 @@ from ev3sim2d.devices.brick_parts import Battery, Led
 from ev3sim2d.devices.device import C_INT_MAX, C_INT_MIN, C_ULONG_MAX
 from ev3sim2d.devices.motor import OVERLOADED, STALLED, TachoMotor
 from ev3sim2d.devices.registry import SENSORS
-from ev3sim2d.protocol import Channel, ProtocolError, decode, encode
+from ev3sim2d.protocol import PROTOCOL, Channel, ProtocolError, decode, encode
 from ev3sim2d.protocol.joining import join_message
 from ev3sim2d.render.audio import sound_track
 from ev3sim2d.render.timeline import Timeline, sound_spans
@@ -715,7 +715,7 @@ def test_what_a_brick_says_of_itself_is_kept_short():
     port = BrickPort(0, sim.robots[0], None, sim.trace, [])
     huge = "e" * 5_000_000
     port.hello = {
-        "protocol": 1,
+        "protocol": PROTOCOL,
         "python": huge,
         "sandbox": {f"layer{i}" + huge: huge for i in range(3)},
         "x": huge,
@@ -1041,7 +1041,7 @@ class FakeJoin:
         self.buffer = b""
         self.sock.sendall(encode(join_message(None, robot, "mallory", "mallory.py", "/nowhere/mallory.py")))
         assert self.receive()[0] == "seat"
-        self.sock.sendall(encode(["hello", {"protocol": 1, "sandbox": {}}]))
+        self.sock.sendall(encode(["hello", {"protocol": PROTOCOL, "sandbox": {}}]))
 
     def receive(self) -> list | None:
         while b"\n" not in self.buffer:
