@@ -5,7 +5,11 @@ For 1, 2 and 4 robots in mazes/sumo-4.yaml:
 - the world alone: the robots' motors driven as examples/sumo.py drives them (turn on the spot, charge
   at what the ultrasonic sensor sees within 70 cm, back off and turn away from the black line), every
   sensor of every robot read every tick, in this process (no program, no brick);
-- with their bricks: N copies of examples/sumo.py, each in its sandboxed brick (run_programs);
+- with their bricks: N copies of examples/sumo.py, each in its sandboxed brick (run_programs): busy
+  bricks, reading two sensors and writing their motors each time round;
+- waiting bricks: N copies of a program of blocking moves (on_for_seconds, on_for_degrees, sleep), which
+  waits for its motors most of the time: what a brick's "nothing from me before t" saves (docs/protocol.md,
+  Quiet waits);
 each as a multiple of real time (simulated seconds per wall second, the best of --repeat), and per row
 the cost of N robots relative to one (world alone: the one-robot figure / the N-robot one) and what is
 left of the world's speed with the bricks (with bricks / world alone).
@@ -13,13 +17,16 @@ left of the world's speed with the bricks (with bricks / world alone).
 Targets (issue 28): four robots' world at most 3.5x the cost of one; four bricks at least 0.6 of the
 world alone's speed.  The machine may be shared: compare the ratios of one run.
 Run:  python benchmarks/robots.py [--seconds 30] [--world-seconds 120] [--repeat 2] [--robots 1 2 4]
-      [--world-only] [--cpu]   (--cpu: the world alone timed by the process's CPU time, on a loaded machine)
+      [--world-only] [--cpu] [--compare]
+(--cpu: the world alone timed by the process's CPU time, on a loaded machine; --compare: the bricks also
+told of every tick, the old path, EV3SIM2D_EVERY_TICK=1, in the same run)
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import tempfile
 import time
 from pathlib import Path
 
@@ -31,6 +38,16 @@ SUMO = ROOT / "examples" / "sumo.py"
 WORLD = "sumo-4"
 BORDER = 30  # as examples/sumo.py: reflected light below this is the ring's black line
 SEES_MM = 700  # ... and something nearer than 70 cm ahead is another robot (US-DIST-CM reads mm)
+MOVES = """
+from ev3dev2.motor import OUTPUT_B, OUTPUT_C, MoveTank
+from time import sleep
+tank = MoveTank(OUTPUT_B, OUTPUT_C)
+while True:
+    tank.on_for_seconds(30, 30, 0.8)
+    tank.on_for_degrees(30, -30, 180)
+    sleep(0.3)
+    tank.on_for_seconds(-30, -30, 0.8)
+"""
 
 
 class SumoDriver:
@@ -91,11 +108,35 @@ def world_alone(world, robots: int, seconds: float, clock=time.perf_counter) -> 
     return seconds / (clock() - start)
 
 
-def with_bricks(world, robots: int, seconds: float) -> float:
-    """Real-time factor of `robots` copies of examples/sumo.py in their sandboxed bricks (run time only)."""
-    result = run_programs([SUMO] * robots, world, time_limit_s=seconds)
+def with_bricks(world, robots: int, seconds: float, program: Path = SUMO) -> float:
+    """Real-time factor of `robots` copies of a program in their sandboxed bricks (run time only)."""
+    result = run_programs([program] * robots, world, time_limit_s=seconds)
     assert result.status == "time_limit", result.reason
     return result.sim_time_s / result.wall_time_s
+
+
+def table(world, args, clock, moves: Path) -> list[tuple]:
+    """(robots, world alone, busy bricks, waiting bricks) per row; None where not measured."""
+    rows = []
+    for n in args.robots:
+        alone = max(world_alone(world, n, args.world_seconds, clock) for _ in range(args.repeat))
+        busy = waiting = None
+        if not args.world_only:
+            busy = max(with_bricks(world, n, args.seconds) for _ in range(args.repeat))
+            waiting = max(with_bricks(world, n, args.seconds, moves) for _ in range(args.repeat))
+        rows.append((n, alone, busy, waiting))
+    return rows
+
+
+def show(title: str, rows: list[tuple]) -> None:
+    print(title)
+    print("| robots | world alone | cost vs one robot | sumo bricks | / world | waiting bricks | / world |")
+    print("|---|---|---|---|---|---|---|")
+    one = rows[0][1] if rows[0][0] == 1 else None
+    for n, alone, busy, waiting in rows:
+        cost = f"{one / alone:.2f}x" if one else "-"
+        cells = [f"{b:.0f}x | {b / alone:.2f}" if b is not None else "- | -" for b in (busy, waiting)]
+        print(f"| {n} | {alone:.0f}x | {cost} | {cells[0]} | {cells[1]} |")
 
 
 def main() -> None:
@@ -108,28 +149,25 @@ def main() -> None:
     parser.add_argument(
         "--cpu", action="store_true", help="the world alone by this process's CPU time, not the wall clock"
     )
+    parser.add_argument("--compare", action="store_true", help="also with every brick told of every tick")
     args = parser.parse_args()
     clock = time.process_time if args.cpu else time.perf_counter
     world = load_maze(find_maze(WORLD))
-    rows = []
-    for n in args.robots:
-        alone = max(world_alone(world, n, args.world_seconds, clock) for _ in range(args.repeat))
-        bricks = None
-        if not args.world_only:
-            bricks = max(with_bricks(world, n, args.seconds) for _ in range(args.repeat))
-        rows.append((n, alone, bricks))
-    one = rows[0][1] if rows[0][0] == 1 else None
     clocked = "world alone by CPU time" if args.cpu else "wall clock"
-    print(f"{WORLD}, examples/sumo.py; best of {args.repeat}; x real time ({clocked})")
-    print(
-        "| robots | world alone | with their bricks | cost vs one robot (world alone) | bricks / world alone |"
-    )
-    print("|---|---|---|---|---|")
-    for n, alone, bricks in rows:
-        cost = f"{one / alone:.2f}x" if one else "-"
-        with_b = f"{bricks:.0f}x" if bricks is not None else "-"
-        share = f"{bricks / alone:.2f}" if bricks is not None else "-"
-        print(f"| {n} | {alone:.0f}x | {with_b} | {cost} | {share} |")
+    print(f"{WORLD}; best of {args.repeat}; x real time ({clocked})")
+    with tempfile.TemporaryDirectory() as folder:
+        moves = Path(folder) / "moves.py"
+        moves.write_text(MOVES)
+        if args.compare:
+            os.environ["EV3SIM2D_EVERY_TICK"] = "1"
+            try:
+                show(
+                    "every brick told of every tick (EV3SIM2D_EVERY_TICK=1):",
+                    table(world, args, clock, moves),
+                )
+            finally:
+                del os.environ["EV3SIM2D_EVERY_TICK"]
+        show("as configured:", table(world, args, clock, moves))
     print("targets: four robots' world at most 3.5x one robot's cost; four bricks at least 0.6 of the world")
     print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.2f} (the figures move with it)")
 
