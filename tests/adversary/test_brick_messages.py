@@ -649,6 +649,40 @@ BUDGET_ATTACKS = {
         """,
         "not a JSON message",
     ),
+    # quiet waits (protocol 2, op u) that lie: back in time, past any run, on a value never read, malformed
+    "quiet_backwards": (
+        """\
+        time.sleep(0.5)
+        send(["u", now() - 20_000, now() - 10_000, 0, 0])
+        time.sleep(5)
+        """,
+        "goes back in time",
+    ),
+    "quiet_for_ever": (
+        """\
+        time.sleep(0.5)
+        send(["u", now() + 10_000, 10**30, 0, 0])
+        time.sleep(5)
+        """,
+        "goes back in time",
+    ),
+    "quiet_unwatched": (
+        """\
+        time.sleep(0.5)
+        t = now() - now() % 10_000 + 10_000
+        send(["u", t, t + 1_000_000, 987_654, 0])
+        time.sleep(5)
+        """,
+        "a quiet wait",
+    ),
+    "quiet_malformed": (
+        """\
+        time.sleep(0.5)
+        send(["u", "soon", None])
+        time.sleep(5)
+        """,
+        "a quiet wait is [u, first tick, last tick, key, value]",
+    ),
     # requests that are never collected: answers the simulator would keep for ever
     "requests": (
         """\
