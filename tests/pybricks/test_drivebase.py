@@ -12,27 +12,19 @@ import math
 import pytest
 
 from tests.pybricks import firmware_trajectory as fw
+from tests.pybricks.printed import TIMED, output
 
 TICK = 0.01
-HEADER = """
-import time
+HEADER = (
+    TIMED
+    + """
 from pybricks.ev3devices import Motor
 from pybricks.parameters import Port, Stop, Direction
 from pybricks.robotics import DriveBase
 left, right = Motor(Port.B), Motor(Port.C)
 db = DriveBase(left, right, 56, 120)
-
-def timed(label, move):
-    start = time.time()
-    move()
-    print(label, round(time.time() - start, 4))
 """
-
-
-def output(result) -> dict:
-    """{label: [values...]} from the lines the program printed."""
-    assert result.status == "finished", (result.status, result.reason, result.error)
-    return {line.text.split()[0]: line.text.split()[1:] for line in result.trace.output}
+)
 
 
 def pose(result):

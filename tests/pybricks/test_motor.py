@@ -8,24 +8,17 @@ Large motors on B and C (the wheels) and a Medium motor on A that drives nothing
 """
 
 from tests.pybricks import firmware_trajectory as fw
+from tests.pybricks.printed import TIMED, output
 
 TICK = 0.01
 IO_S = 0.05  # the shim's sysfs writes and reads before and after a move (3 ms and 2 ms each)
-HEADER = """
-import time
+HEADER = (
+    TIMED
+    + """
 from pybricks.ev3devices import Motor
 from pybricks.parameters import Port, Stop, Direction
-
-def timed(label, move):
-    start = time.time()
-    move()
-    print(label, round(time.time() - start, 4))
 """
-
-
-def output(result) -> dict:
-    assert result.status == "finished", (result.status, result.reason, result.error)
-    return {line.text.split()[0]: line.text.split()[1:] for line in result.trace.output}
+)
 
 
 def test_limits_and_defaults_per_motor_type(run):
