@@ -179,6 +179,10 @@ FEATURES = {
     ),
     "select_on_pipes": ("select() on pipes (Windows' takes only sockets)", _select_on_pipes),
     "sleep_command": ("`sleep` command", lambda: shutil.which("sleep") is not None),
+    "affinity": (
+        "os.sched_setaffinity on two cores or more (a process chooses its cores)",
+        lambda: hasattr(os, "sched_setaffinity") and len(os.sched_getaffinity(0)) >= 2,
+    ),
     "posix_shell": (
         "POSIX shell as subprocess's shell (the docs' commands: quotes, # comments, pipes)",
         _posix_shell,

@@ -349,6 +349,7 @@ def grade(
             while queue and len(running) < jobs:
                 job = queue.pop()
                 job.cpu = cores.least_used([w.job.cpu for w in running])
+                job.alone = jobs == 1
                 running.append(start_job(job, lesson, use_fork, zygote))
             _wait_for_one([w.pid for w in running], POLL_S)
             now = time.monotonic()

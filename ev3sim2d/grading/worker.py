@@ -81,6 +81,7 @@ class Job:
     readable: str = ""  # the submission (file or folder): all the brick may read besides Python
     program_seed: int = 0  # the program's `random`: the same in every variant, so it cannot tell them apart
     cpu: int | None = None  # the core the worker and its brick share (None: any, and they may spin)
+    alone: bool = False  # the only run on the machine now (one job at a time): its processes may choose cores
     grader: int = 0  # the grader's pid: the worker ends when it does
 
 
@@ -236,6 +237,7 @@ def _run_and_score(job: Job, lesson, folder: Path, zygote=None) -> int:
             program_seed=job.program_seed,
             spin=job.cpu is None,
             zygote=zygote,
+            place=job.alone,
         )
     except ProgramError as err:
         _write_json(folder / RESULT_FILE, {"outcome": "error", "message": str(err)})

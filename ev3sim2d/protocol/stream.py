@@ -19,7 +19,10 @@ from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode, 
 _perf_counter = time.perf_counter  # the real clock, whatever a program does to `time` later
 _DONTWAIT = getattr(socket, "MSG_DONTWAIT", None)  # None: not on this system (Windows): select first
 _CORES = os.cpu_count() or 1
-_load = {"checked": -1.0, "idle": True}
+# looks: the last three, 1 for crowded; ours: this run's processes that spin as they wait for each other (the
+# simulator and its bricks), and whether they have cores of their own (spinning_processes)
+_load = {"checked": -1.0, "idle": True, "looks": 0, "ours": 2, "own_cores": False}
+LOAD_CHECK_S = 0.05
 _deferred_wakes: list = []  # channels whose reader may sleep and has not been woken yet
 
 
@@ -36,23 +39,48 @@ def flush_wakes() -> None:
         _deferred_wakes.pop().wake_now()
 
 
+def spinning_processes(count: int, own_cores: bool) -> None:
+    """How many processes of this run spin while they wait for each other (the simulator and its bricks: 2
+    unless told), and whether they were given cores of their own (simulator/cores.py).  More of them than
+    cores may spin only then: spinning processes that share a core take turns by the scheduler's time
+    slices, a hundred times slower than they hand over (benchmarks/robots.py)."""
+    _load["ours"], _load["own_cores"] = count, own_cores
+    _load.update(checked=-1.0, looks=0, idle=True)
+
+
 def cores_idle() -> bool:
-    """Whether this machine has a core to spare for spinning (looked up at most twice a second, from
-    the number of processes running now): on a busy machine a spinning process only takes the time
-    its peer needs."""
+    """Whether this machine has a core to spare for spinning: looked at every LOAD_CHECK_S from the number of
+    processes running then, and idle unless two of the last three looks found more than there are cores (or
+    than this run's own spinning processes, on cores of their own).  A moment's crowd (a brick starting, a
+    kernel thread) is not a busy machine: decided on one look, a run that began at such a moment would wake
+    its peer by a system call at every message until the next look, four times slower, and a short run
+    never looks again."""
+    ours = _load["ours"]
+    if ours > _CORES and not _load["own_cores"]:
+        return False
     now = _perf_counter()
-    if now - _load["checked"] > 0.5:
+    if now - _load["checked"] > LOAD_CHECK_S:
         _load["checked"] = now
-        try:
-            with open("/proc/loadavg", "rb") as f:
-                running = int(f.read().split()[3].split(b"/")[0])
-            _load["idle"] = running <= _CORES
-        except (OSError, ValueError, IndexError):
-            try:
-                _load["idle"] = os.getloadavg()[0] < _CORES - 0.5
-            except (OSError, AttributeError):  # (no load average on Windows)
-                _load["idle"] = True
+        looks = _load["looks"] = (_load["looks"] << 1 | _crowded(max(_CORES, ours))) & 0b111
+        _load["idle"] = looks not in (0b011, 0b101, 0b110, 0b111)
     return _load["idle"]
+
+
+def machine_busy() -> bool:
+    """One look now: more processes running than cores (before a run starts its bricks: others')."""
+    return _crowded(_CORES)
+
+
+def _crowded(room: int) -> bool:
+    """Whether more than `room` processes are running now (ours are running too while they spin)."""
+    try:
+        with open("/proc/loadavg", "rb") as f:
+            return int(f.read().split()[3].split(b"/")[0]) > room
+    except (OSError, ValueError, IndexError):
+        try:
+            return os.getloadavg()[0] >= room - 0.5
+        except (OSError, AttributeError):  # (no load average on Windows)
+            return False
 
 
 class Channel:

@@ -27,6 +27,7 @@ from ..world.robot_spec import RobotSpec
 from ..world.world import World
 from .brick_port import BrickPort
 from .bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
+from .cores import RunCores
 from .program import Program, ProgramError
 from .session import Session
 from .simulation import Simulation, StartBlocked
@@ -144,6 +145,7 @@ def run_programs(
     debug: str | None = None,
     debugger=None,
     keep_written: bool = False,
+    place: bool = True,
 ) -> RunResult:
     """Run each program on its own robot in the world; see the module docstring.
 
@@ -157,6 +159,8 @@ def run_programs(
     program_seed: the seed of the programs' `random` (default: seed, which also seeds sensor noise).
     spin: whether simulator and bricks may spin while they wait for each other (False when other runs
     share the cores, as in a class run with --jobs 2).
+    place: whether a run of several bricks may give the simulator a core of its own and the bricks the
+    others (simulator/cores.py): not when other runs share the machine (a class graded in parallel).
     zygote: a BrickZygote to fork the bricks from (a class run's), instead of starting each afresh.
     arguments: every program's command line after its name (its sys.argv[1:]).
     debug: what breakpoint() does in the programs (None: nothing, as in grading; "breakpoints": it stops
@@ -179,6 +183,7 @@ def run_programs(
     printed: list = []
     session = None
     wall = 0.0
+    cores = RunCores(len(loaded), spin, place)
     try:
         for i, program in enumerate(loaded):
             path = program.path.resolve()
@@ -186,6 +191,7 @@ def run_programs(
             brick, read_paths = start_brick(
                 list(may_read), scratch_in=scratch_in, spin=spin, zygote=zygote, limits=limits, program=path
             )
+            cores.brick_started(i, brick.popen.pid)
             brick.keep_written = keep_written
             bricks.append(brick)
             brick_seed = seed if program_seed is None else program_seed
@@ -211,6 +217,7 @@ def run_programs(
                 )
         for port in ports:
             await_hello(port)
+        cores.start()
         session, wall = play(sim, ports, limit_us, hang_after_s, printed, echo, spin)
     except KeyboardInterrupt:  # while the bricks start
         for port in ports:
@@ -218,6 +225,7 @@ def run_programs(
         session = Session(sim, ports, limit_us, hang_after_s)
         session.interrupted = True
     finally:
+        cores.end()
         for i, brick in enumerate(bricks):
             gone = ports[i].gone if i < len(ports) else "start"
             ending = gone is None or gone.startswith(("gone", "start"))

@@ -1,0 +1,86 @@
+"""Which cores a run's processes use: with several bricks, a core of its own for the simulator.
+
+The simulator and its bricks hand the turn to each other every tick, through
+shared memory, and each spins while it waits: on a free core the other side's
+message is seen within a microsecond, where waking a process that slept costs
+50 to 200.  With more processes than cores, spinning only works if a process
+that spins never shares a core with the simulator: a brick spinning on the
+simulator's core holds it until the scheduler's time slice ends.  So with two
+bricks or more, and a machine nobody else keeps busy, the simulator keeps the
+first core it may use, and the bricks take the others in turn (on two cores: all
+on the second, where they spin and yield to each other), each from its start (a
+brick moved there only once it has started runs three times slower, measured).  Measured on 2 cores
+(benchmarks/robots.py): two line followers 80x real time with the scheduler's
+choice, 190x so; four sumo robots 15x and 60x.  One brick needs none of this
+(the scheduler puts the two processes on two cores by itself).
+
+Only where the system lets a process choose its cores (os.sched_setaffinity:
+Linux); elsewhere, more spinning processes than cores do not spin at all
+(protocol/stream.cores_idle).  Nothing of this changes what a run does, only how
+fast: the world and the bricks meet in virtual time whatever runs where.
+"""
+
+from __future__ import annotations
+
+import os
+
+from ..protocol.stream import machine_busy, spinning_processes
+
+
+class RunCores:
+    """The cores of one run: decided before its bricks start, each brick placed as it starts (brick_started),
+    the simulator placed for the run itself (start), and everything put back at its end (end: a video is
+    encoded afterwards, on every core)."""
+
+    def __init__(self, bricks: int, spin: bool, place: bool = True) -> None:
+        """bricks: how many the run starts; spin: whether it may spin at all (not when other runs share its
+        cores); place: whether it may choose cores (only a run that has the machine to itself: not one of a
+        class graded in parallel, whose grader shares the cores out, grading/grader.py)."""
+        self._choose = getattr(os, "sched_setaffinity", None)
+        self._allowed = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
+        ours = self._ours = 1 + bricks
+        self.shared = bool(
+            spin
+            and place
+            and self._choose is not None
+            and bricks >= 2
+            and len(self._allowed) >= 2
+            and not machine_busy()  # (a look before our bricks start: others' processes only)
+        )
+        spinning_processes(ours if spin else 2, self.shared)
+
+    def brick_started(self, index: int, pid: int) -> None:
+        """Brick `index` (its process: pid) runs on a core of the bricks' from now on."""
+        if not self.shared:
+            return
+        theirs = self._allowed[1:]
+        try:
+            for thread in _threads(pid):
+                self._choose(thread, {theirs[index % len(theirs)]})
+        except OSError:  # (gone already, or refused: the scheduler's choice, and no spinning on so many)
+            self._give_up()
+
+    def start(self) -> None:
+        """The run begins: the simulator (this thread) on the core of its own."""
+        if self.shared:
+            try:
+                self._choose(0, {self._allowed[0]})
+            except OSError:
+                self._give_up()
+
+    def end(self) -> None:
+        if self.shared:
+            self._choose(0, set(self._allowed))
+        spinning_processes(2, False)
+
+    def _give_up(self) -> None:
+        self.shared = False
+        spinning_processes(self._ours, False)
+
+
+def _threads(pid: int) -> list[int]:
+    """The threads of a process (a core is chosen thread by thread; those it starts later inherit it)."""
+    try:
+        return [int(name) for name in os.listdir(f"/proc/{pid}/task")]
+    except (OSError, ValueError):
+        return [pid]
