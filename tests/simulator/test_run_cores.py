@@ -24,7 +24,9 @@ def test_several_bricks_on_cores_of_their_own_run_as_with_the_scheduler_s_choice
     monkeypatch.setattr(cores, "machine_busy", lambda: False)
     started = cores.RunCores.brick_started
     monkeypatch.setattr(
-        cores.RunCores, "brick_started", lambda self, i, pid: (placed.append(self.shared), started(self, i, pid))
+        cores.RunCores,
+        "brick_started",
+        lambda self, i, pid: (placed.append(self.shared), started(self, i, pid)),
     )
     on_own = run_programs(programs, world, time_limit_s=3)
     assert placed == [True, True]
