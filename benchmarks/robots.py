@@ -15,11 +15,13 @@ the cost of N robots relative to one (world alone: the one-robot figure / the N-
 left of the world's speed with the bricks (with bricks / world alone).
 
 Targets (issue 28): four robots' world at most 3.5x the cost of one; four bricks at least 0.6 of the
-world alone's speed.  The machine may be shared: compare the ratios of one run.
+world alone's speed; four sumo bricks at least 100x real time, two line followers at least 250x.  The machine may be shared: compare the ratios of one run.
 Run:  python benchmarks/robots.py [--seconds 30] [--world-seconds 120] [--repeat 2] [--robots 1 2 4]
-      [--world-only] [--cpu] [--compare]
+      [--world-only] [--cpu] [--compare] [--unplaced]
 (--cpu: the world alone timed by the process's CPU time, on a loaded machine; --compare: the bricks also
-told of every tick, the old path, EV3SIM2D_EVERY_TICK=1, in the same run)
+told of every tick, the old path, EV3SIM2D_EVERY_TICK=1, in the same run; --unplaced: also with the
+processes where the scheduler puts them, the old path: run_programs(place=False))
+Also: examples/line_follower.py alone on mazes/line.yaml and two of them on line-shared.yaml.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from ev3sim2d.world.maze_file import find_maze, load_maze
 
 ROOT = Path(__file__).resolve().parents[1]
 SUMO = ROOT / "examples" / "sumo.py"
+FOLLOWER = ROOT / "examples" / "line_follower.py"
 WORLD = "sumo-4"
 BORDER = 30  # as examples/sumo.py: reflected light below this is the ring's black line
 SEES_MM = 700  # ... and something nearer than 70 cm ahead is another robot (US-DIST-CM reads mm)
@@ -108,24 +111,35 @@ def world_alone(world, robots: int, seconds: float, clock=time.perf_counter) -> 
     return seconds / (clock() - start)
 
 
-def with_bricks(world, robots: int, seconds: float, program: Path = SUMO) -> float:
-    """Real-time factor of `robots` copies of a program in their sandboxed bricks (run time only)."""
-    result = run_programs([program] * robots, world, time_limit_s=seconds)
+def with_bricks(world, robots: int, seconds: float, program: Path = SUMO, place: bool = True) -> float:
+    """Real-time factor of `robots` copies of a program in their sandboxed bricks (run time only); place:
+    False leaves the processes where the scheduler puts them (simulator/cores.py)."""
+    result = run_programs([program] * robots, world, time_limit_s=seconds, place=place)
     assert result.status == "time_limit", result.reason
     return result.sim_time_s / result.wall_time_s
 
 
-def table(world, args, clock, moves: Path) -> list[tuple]:
+def table(world, args, clock, moves: Path, place: bool = True) -> list[tuple]:
     """(robots, world alone, busy bricks, waiting bricks) per row; None where not measured."""
     rows = []
     for n in args.robots:
         alone = max(world_alone(world, n, args.world_seconds, clock) for _ in range(args.repeat))
         busy = waiting = None
         if not args.world_only:
-            busy = max(with_bricks(world, n, args.seconds) for _ in range(args.repeat))
-            waiting = max(with_bricks(world, n, args.seconds, moves) for _ in range(args.repeat))
+            busy = max(with_bricks(world, n, args.seconds, place=place) for _ in range(args.repeat))
+            waiting = max(with_bricks(world, n, args.seconds, moves, place) for _ in range(args.repeat))
         rows.append((n, alone, busy, waiting))
     return rows
+
+
+def line_followers(args, place: bool = True) -> tuple[float, float]:
+    """examples/line_follower.py: one on mazes/line.yaml, and two on line-shared.yaml (x real time)."""
+    one = max(
+        with_bricks(load_maze(find_maze("line")), 1, args.seconds, FOLLOWER) for _ in range(args.repeat)
+    )
+    shared = load_maze(find_maze("line-shared"))
+    two = max(with_bricks(shared, 2, args.seconds, FOLLOWER, place) for _ in range(args.repeat))
+    return one, two
 
 
 def show(title: str, rows: list[tuple]) -> None:
@@ -150,6 +164,9 @@ def main() -> None:
         "--cpu", action="store_true", help="the world alone by this process's CPU time, not the wall clock"
     )
     parser.add_argument("--compare", action="store_true", help="also with every brick told of every tick")
+    parser.add_argument(
+        "--unplaced", action="store_true", help="also with the processes where the scheduler puts them"
+    )
     args = parser.parse_args()
     clock = time.process_time if args.cpu else time.perf_counter
     world = load_maze(find_maze(WORLD))
@@ -167,8 +184,25 @@ def main() -> None:
                 )
             finally:
                 del os.environ["EV3SIM2D_EVERY_TICK"]
+        if args.unplaced:
+            show(
+                "processes where the scheduler puts them (place=False):",
+                table(world, args, clock, moves, False),
+            )
         show("as configured:", table(world, args, clock, moves))
-    print("targets: four robots' world at most 3.5x one robot's cost; four bricks at least 0.6 of the world")
+    if not args.world_only:
+        if args.unplaced:
+            one, two = line_followers(args, place=False)
+            print(
+                f"line followers, where the scheduler puts them: one on line {one:.0f}x, two on line-shared "
+                f"{two:.0f}x ({two / one:.2f} of one)"
+            )
+        one, two = line_followers(args)
+        print(
+            f"line followers: one on line {one:.0f}x, two on line-shared {two:.0f}x ({two / one:.2f} of one)"
+        )
+    print("targets: four robots' world at most 3.5x one robot's cost; four bricks at least 0.6 of the world;")
+    print("four sumo bricks at least 100x real time; two line followers on line-shared at least 250x")
     print(f"cores: {os.cpu_count()}; load average {os.getloadavg()[0]:.2f} (the figures move with it)")
 
 
