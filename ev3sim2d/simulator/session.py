@@ -31,6 +31,7 @@ EV3's brickman does when a program ends: its motors are reset (Simulation.let_go
 from __future__ import annotations
 
 import gc
+import os
 import sys
 import time
 import traceback
@@ -43,6 +44,7 @@ from .mailboxes import Mailboxes
 from .simulation import Simulation
 
 _perf_counter = time.perf_counter
+_yield = getattr(os, "sched_yield", lambda: None)
 SPIN_S = 0.002
 LAST_WORDS_S = 1.0  # real seconds to wait, at most, for the bricks stopped to say where their programs were
 
@@ -377,6 +379,7 @@ class Session:
                 heard.update(port.index for port in ports if self._take(port))
                 if heard or _perf_counter() > spin_end:
                     break
+                _yield()  # a brick that shares this core runs now, not at the end of a time slice
             if not heard:
                 channels = [p.channel for p in ports]
                 try:
