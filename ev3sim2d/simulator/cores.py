@@ -1,18 +1,20 @@
 """Which cores a run's processes use: with several bricks, a core of its own for the simulator.
 
 The simulator and its bricks hand the turn to each other every tick, through
-shared memory, and each spins while it waits: on a free core the other side's
-message is seen within a microsecond, where waking a process that slept costs
-50 to 200.  With more processes than cores, spinning only works if a process
-that spins never shares a core with the simulator: a brick spinning on the
-simulator's core holds it until the scheduler's time slice ends.  So with two
-bricks or more, and a machine nobody else keeps busy, the simulator keeps the
-first core it may use, and the bricks take the others in turn (on two cores: all
-on the second, where they spin and yield to each other), each from its start (a
-brick moved there only once it has started runs three times slower, measured).  Measured on 2 cores
-(benchmarks/robots.py): two line followers 80x real time with the scheduler's
-choice, 190x so; four sumo robots 15x and 60x.  One brick needs none of this
-(the scheduler puts the two processes on two cores by itself).
+shared memory, and each spins while it waits.  A hand-over costs 3.6 us between
+two cores that spin, 6 us on one core where the waiting side spins and yields
+it, 13 to 34 us where the waiting side sleeps and is woken by a system call
+(benchmarks/hand_over.py, 2 cores).  With more processes than cores, spinning
+only pays if no brick shares the simulator's core: the simulator spins on the
+bricks' markers and steps the world, and a brick there would wait for it.  So
+with two bricks or more, on a machine nobody else keeps busy, the simulator
+keeps the first core it may use and the bricks take the others in turn (on two
+cores: all on the second, where they spin and yield it to each other), each
+from its start: a brick moved there only once it had started ran three times
+slower (measured, cause not found).  Measured on 2 cores (benchmarks/robots.py):
+two line followers on line-shared went from about 80x real time to 190-250x,
+four sumo robots from 15-25x to 55-60x.  One brick needs none of this (the
+scheduler puts the two processes on two cores by itself).
 
 Only where the system lets a process choose its cores (os.sched_setaffinity:
 Linux); elsewhere, more spinning processes than cores do not spin at all
