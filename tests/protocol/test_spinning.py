@@ -52,9 +52,13 @@ def test_more_spinning_processes_than_cores_spin_only_on_cores_of_their_own(mach
     assert not stream.cores_idle()  # they would share cores by the scheduler's time slices
     stream.spinning_processes(5, True)
     assert stream.cores_idle() and stream.cores_idle()  # theirs: five running are their own
-    machine[0] = 6  # and one more, not theirs
-    stream.cores_idle()
+    machine[0] = 6  # and a thread of theirs beside them (the memory watch's)
+    assert all(stream.cores_idle() for _ in range(5))
+    machine[0] = 7  # and another program: only when every one of the last three looks finds it
+    assert stream.cores_idle() and stream.cores_idle()
     assert not stream.cores_idle()
+    machine[0] = 5
+    assert stream.cores_idle()
 
 
 def _affinity_of(pid: int) -> set[int]:
