@@ -9,9 +9,10 @@ only pays if no brick shares the simulator's core: the simulator spins on the
 bricks' markers and steps the world, and a brick there would wait for it.  So
 with two bricks or more, on a machine nobody else keeps busy, the simulator
 keeps the first core it may use and the bricks take the others in turn (on two
-cores: all on the second, where they spin and yield it to each other), each
-from its start: a brick moved there only once it had started ran three times
-slower (measured, cause not found).  Measured on 2 cores (benchmarks/robots.py):
+cores: all on the second, where they spin and yield it to each other).  A
+brick is a tree of processes (the one started, and the sandboxed one it forks to
+run the program): each is placed as it starts, so that what it forks inherits
+its core, and the whole tree again as the run begins, whatever forked when.  Measured on 2 cores (benchmarks/robots.py):
 two line followers on line-shared went from about 80x real time to 190-250x,
 four sumo robots from 15-25x to 55-60x.  One brick needs none of this (the
 scheduler puts the two processes on two cores by itself).
@@ -50,25 +51,35 @@ class RunCores:
             and not machine_busy()  # (a look before our bricks start: others' processes only)
         )
         spinning_processes(ours if spin else 2, self.shared)
+        self._bricks: list[tuple[int, int]] = []  # (index, pid) of each brick started
 
     def brick_started(self, index: int, pid: int) -> None:
-        """Brick `index` (its process: pid) runs on a core of the bricks' from now on."""
-        if not self.shared:
-            return
-        theirs = self._allowed[1:]
-        try:
-            for thread in _threads(pid):
-                self._choose(thread, {theirs[index % len(theirs)]})
-        except OSError:  # (gone already, or refused: the scheduler's choice, and no spinning on so many)
-            self._give_up()
+        """Brick `index` (the process started: pid) runs on a core of the bricks' from now on."""
+        if self.shared:
+            self._bricks.append((index, pid))
+            self._place(index, [pid])
 
     def start(self) -> None:
-        """The run begins: the simulator (this thread) on the core of its own."""
+        """The run begins: the simulator (this thread) on the core of its own, and every process of each
+        brick on its core (one forked before its parent was placed would run anywhere)."""
+        if not self.shared:
+            return
+        for index, pid in self._bricks:
+            self._place(index, _tree(pid))
         if self.shared:
             try:
                 self._choose(0, {self._allowed[0]})
             except OSError:
                 self._give_up()
+
+    def _place(self, index: int, pids: list[int]) -> None:
+        core = {self._allowed[1:][index % (len(self._allowed) - 1)]}
+        try:
+            for pid in pids:
+                for thread in _threads(pid):
+                    self._choose(thread, core)
+        except OSError:  # (gone already, or refused: the scheduler's choice, and no spinning on so many)
+            self._give_up()
 
     def end(self) -> None:
         if self.shared:
@@ -78,6 +89,21 @@ class RunCores:
     def _give_up(self) -> None:
         self.shared = False
         spinning_processes(self._ours, False)
+
+
+def _tree(pid: int) -> list[int]:
+    """A process and its descendants, as /proc lists each thread's children (none found: the process)."""
+    found, stack = [], [pid]
+    while stack:
+        parent = stack.pop()
+        found.append(parent)
+        for thread in _threads(parent):
+            try:
+                with open(f"/proc/{parent}/task/{thread}/children") as f:
+                    stack += [int(child) for child in f.read().split()]
+            except (OSError, ValueError):
+                pass
+    return found
 
 
 def _threads(pid: int) -> list[int]:

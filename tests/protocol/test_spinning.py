@@ -3,10 +3,13 @@ which cores a run with several bricks puts them (simulator/cores.py): neither ch
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -86,6 +89,46 @@ def test_several_bricks_get_the_cores_the_simulator_does_not_keep(monkeypatch):
         for p in sleepers:
             p.kill()
             p.wait()
+
+
+@pytest.mark.needs_linux("affinity", "proc", "fork")
+def test_a_process_a_brick_forked_before_it_was_placed_joins_it_as_the_run_begins(monkeypatch, tmp_path):
+    """A brick is the process started and the sandboxed one it forks to run the program: one forked before
+    its parent was placed would run anywhere, so the run places each brick's whole tree as it begins."""
+    monkeypatch.setattr(cores, "machine_busy", lambda: False)
+    allowed = sorted(os.sched_getaffinity(0))
+    ready = tmp_path / "child"
+    forks = (
+        "import os, sys, time\n"
+        "if os.fork() == 0:\n"
+        f"    open({str(ready)!r}, 'w').write(str(os.getpid())); time.sleep(30)\n"
+        "time.sleep(30)\n"
+    )
+    bricks = [
+        subprocess.Popen([sys.executable, "-c", forks]),
+        subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"]),
+    ]
+    child = None
+    try:
+        for _ in range(500):
+            if ready.exists() and ready.read_text():
+                break
+            time.sleep(0.01)
+        child = int(ready.read_text())
+        share = RunCores(2, spin=True)
+        for i, p in enumerate(bricks):
+            share.brick_started(i, p.pid)
+        assert _affinity_of(child) == set(allowed)  # (forked before: not placed with its parent)
+        share.start()
+        assert _affinity_of(child) == _affinity_of(bricks[0].pid) == {allowed[1]}
+        share.end()
+    finally:
+        for p in bricks:
+            p.kill()
+            p.wait()
+        if child is not None:
+            with contextlib.suppress(OSError):
+                os.kill(child, signal.SIGKILL)
 
 
 @pytest.mark.needs_linux("affinity")
