@@ -118,9 +118,10 @@ class Channel:
     # ---------------------------------------------------------------- receiving
     def pending(self) -> list | None:
         """The next message if one has arrived already, else None (never waits)."""
-        message = self._take()
-        if message is not None:
-            return message
+        if self._buffer:  # (an empty buffer holds no message: read first)
+            message = self._take()
+            if message is not None:
+                return message
         while self._fill_now():
             message = self._take()
             if message is not None:

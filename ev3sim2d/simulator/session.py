@@ -138,7 +138,7 @@ class Session:
                 if self._apply(port, lambda port=port: port.wakes(label)):
                     woke = label
             elif port.declared in (tick_us, label):
-                self._apply(port, lambda port=port: port.snapshot(label))
+                self._apply(port, port.snapshot, label)
         return woke
 
     def drop(self, port: BrickPort, why: str) -> None:
@@ -172,15 +172,15 @@ class Session:
                     if threads:
                         self.where[port.index] = threads
 
-    def _apply(self, port: BrickPort, work: Callable[[], object]):
+    def _apply(self, port: BrickPort, work: Callable[..., object], *args):
         """Do `work` on this brick's behalf (take its messages, apply its ops, take its snapshot): the one
         place where what a brick sends reaches the world.  Whatever goes wrong ends this brick only, and
         the run goes on for the others: a message that is not the protocol, a budget it went past, its
         connection gone, and any other exception, which is the simulator's own failure on this brick's
         ops (our bug, or a value nobody foresaw): said on stderr with its traceback, and in the reason.
-        Returns what `work` returns, None once the brick is dropped."""
+        Returns what `work(*args)` returns, None once the brick is dropped."""
         try:
-            return work()
+            return work(*args)
         except (ProtocolError, OverBudget) as err:
             self.drop(port, _why(err))
         except Exception as err:  # noqa: BLE001 - contained to this brick, and reported loudly
@@ -210,7 +210,7 @@ class Session:
         """Apply whatever the brick has sent, as far as the world's time allows; the real time it takes is
         held against the brick while its clock stands still (judged once what it read is applied)."""
         if not port.finished:
-            self._apply(port, lambda: self._drain_now(port))
+            self._apply(port, self._drain_now, port)
 
     def _drain_now(self, port: BrickPort) -> None:
         """_drain's work, in one _apply: whatever it raises ends this brick (a step that raises would end
