@@ -198,26 +198,25 @@ class Simulation:
     def tick(self, now_us: int) -> None:
         """Advance the world by one tick ending at now_us, and record it."""
         dt = self.dt
-        for robot in self.robots:
+        robots = self.robots
+        for robot in robots:
             robot.before_step(dt)
         self.physics.step(dt)
-        row = []
-        for robot in self.robots:
+        row: list = []
+        add = row.extend
+        for robot in robots:
             robot.after_step(dt)
             body = robot.body
-            row += (
+            add((
                 robot.x,
                 robot.y,
                 robot.heading_rad * DEGREES,
                 1.0 if body.touching else 0.0,
                 1.0 if body.robots_touching else 0.0,
-            )
-            for motor in robot.motors.values():
-                row += (
-                    motor.position_exact,
-                    motor.speed_dps * motor.sign,
-                    motor.state_bits,
-                )
+            ))  # fmt: skip
+            for motor in robot.motors.values():  # (position_exact spelt out: two properties a motor a tick)
+                sign = motor.sign
+                add((sign * (motor.shaft_deg + motor.count_offset), motor.speed_dps * sign, motor.state_bits))
         if len(self.trace.events) > self._sounds_seen and len(self.robots) > 1:
             self._follow_volumes()
         t = now_us / 1e6
