@@ -13,8 +13,8 @@ cores: all on the second, where they spin and yield it to each other).  A
 brick is a tree of processes (the one started, and the sandboxed one it forks to
 run the program): each is placed as it starts, so that what it forks inherits
 its core, and the whole tree again as the run begins, whatever forked when.  Measured on 2 cores (benchmarks/robots.py):
-two line followers on line-shared went from about 80x real time to 190-250x,
-four sumo robots from 15-25x to 55-60x.  One brick needs none of this (the
+two line followers on line-shared went from 65-95x real time to 175-210x, four
+sumo robots from 15-29x to 55-63x.  One brick needs none of this (the
 scheduler puts the two processes on two cores by itself).
 
 Only where the system lets a process choose its cores (os.sched_setaffinity:
