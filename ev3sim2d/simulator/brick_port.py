@@ -675,13 +675,6 @@ class BrickPort:
     # ------------------------------------------------------------- snapshots
     def snapshot(self, label_us: int) -> None:
         """Send the values now, to serve the brick's reads from label_us for one tick."""
-        try:
-            values = [reader() for reader in self._live_readers]  # (values(), at every tick: spelt out)
-        except OSError:
-            values = self.values()
+        values = self.values()
         self.snapped = (label_us, values)
-        if not self.broken:
-            try:
-                self.channel.send(["snap", label_us, values])
-            except ProtocolError:
-                self.broken = True
+        self.send(["snap", label_us, values])

@@ -9,13 +9,14 @@ only pays if no brick shares the simulator's core: the simulator spins on the
 bricks' markers and steps the world, and a brick there would wait for it.  So
 with two bricks or more, on a machine nobody else keeps busy, the simulator
 keeps the first core it may use and the bricks take the others in turn (on two
-cores: all on the second, where they spin and yield it to each other).  A
-brick is a tree of processes (the one started, and the sandboxed one it forks to
-run the program): each is placed as it starts, so that what it forks inherits
-its core, and the whole tree again as the run begins, whatever forked when.  Measured on 2 cores (benchmarks/robots.py):
-two line followers on line-shared went from 65-95x real time to 175-210x, four
-sumo robots from 15-29x to 55-63x.  One brick needs none of this (the
-scheduler puts the two processes on two cores by itself).
+cores: all on the second, where they spin and yield it to each other).  A brick
+is a tree of processes (the one started, and the sandboxed one it forks to run
+the program): each is placed as it starts, so that what it forks inherits its
+core, and the whole tree again as the run begins, whatever forked when.
+Measured on 2 cores (benchmarks/robots.py): two line followers on line-shared
+went from 65-95x real time to 175-210x, four sumo robots from 15-29x to 55-63x.
+One brick needs none of this (the scheduler puts the two processes on two cores
+by itself).
 
 Only where the system lets a process choose its cores (os.sched_setaffinity:
 Linux); elsewhere, more spinning processes than cores do not spin at all
