@@ -9,6 +9,7 @@ ValueError).  Each test runs a program in a simulated world and checks what it p
 """
 
 from tests.inline_world import arena
+from tests.pybricks.sensor_robot import robot_file
 
 # a 12 cm grid with one black column (col 5: x 60..72) on white floor
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18
@@ -17,19 +18,6 @@ STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18
 def printed(result):
     assert result.status == "finished", (result.reason, result.error)
     return [line.text for line in result.trace.output]
-
-
-def robot_file(tmp_path, *sensors, name="robot.yaml"):
-    """A driving base (motors B left, C right) with these sensor entries (YAML flow mappings)."""
-    path = tmp_path / name
-    lines = "".join(f"  - {sensor}\n" for sensor in sensors)
-    path.write_text(
-        "name: test\nwheel_diameter_mm: 56\naxle_track_mm: 120\n"
-        "body: {front_cm: 9, back_cm: 7, width_cm: 15}\n"
-        "motors:\n  - {port: B, kind: large, wheel: left}\n  - {port: C, kind: large, wheel: right}\n"
-        f"sensors:\n{lines}"
-    )
-    return path
 
 
 def at(x_cm, heading_deg=0, inner=None, robot=None, **kwargs):

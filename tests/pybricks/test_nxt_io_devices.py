@@ -9,6 +9,7 @@ cannot be put on a simulated robot, so their classes find nothing, as on a brick
 """
 
 from tests.inline_world import arena
+from tests.pybricks.sensor_robot import robot_file
 
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18  # one black column (x 60..72 cm) on white
 
@@ -16,18 +17,6 @@ STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18  # one black column (x 60..7
 def printed(result):
     assert result.status == "finished", (result.reason, result.error)
     return [line.text for line in result.trace.output]
-
-
-def robot_file(tmp_path, *sensors):
-    path = tmp_path / "robot.yaml"
-    lines = "".join(f"  - {sensor}\n" for sensor in sensors)
-    path.write_text(
-        "name: test\nwheel_diameter_mm: 56\naxle_track_mm: 120\n"
-        "body: {front_cm: 9, back_cm: 7, width_cm: 15}\n"
-        "motors:\n  - {port: B, kind: large, wheel: left}\n  - {port: C, kind: large, wheel: right}\n"
-        f"sensors:\n{lines}"
-    )
-    return path
 
 
 NXT_ROBOT = (
