@@ -26,3 +26,10 @@ def two_wheel_robot(name: str, *sensors: str) -> str:
         "motors:\n  - {port: B, kind: large, wheel: left}\n  - {port: C, kind: large, wheel: right}\n"
         f"sensors:\n{lines}"
     )
+
+
+def robot_file(folder, *sensors: str, name: str = "robot.yaml"):
+    """two_wheel_robot("test", *sensors) written as `name` in folder: its path."""
+    path = folder / name
+    path.write_text(two_wheel_robot("test", *sensors))
+    return path

@@ -8,8 +8,7 @@ once; get_mode_switch_delay: colour 30 ms, infrared 1100 ms), lib/ev3dev/src/ev3
 ValueError).  Each test runs a program in a simulated world and checks what it printed.
 """
 
-from tests.inline_world import arena
-from tests.pybricks.sensor_robot import robot_file
+from tests.inline_world import arena, robot_file
 
 # a 12 cm grid with one black column (col 5: x 60..72) on white floor
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18

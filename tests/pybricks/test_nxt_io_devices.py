@@ -8,8 +8,7 @@ class accepts).  The simulator has NXT light and sound sensors and the EV3 senso
 cannot be put on a simulated robot, so their classes find nothing, as on a brick with nothing there.
 """
 
-from tests.inline_world import arena
-from tests.pybricks.sensor_robot import robot_file
+from tests.inline_world import arena, robot_file
 
 STRIPE = ["#" + "...." + "k" + "." * 13 + "#"] * 18  # one black column (x 60..72 cm) on white
 
