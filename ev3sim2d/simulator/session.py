@@ -295,9 +295,9 @@ class Session:
         """_run for one brick (the common case), without the bookkeeping of several."""
         port.channel.peer_may_defer = True  # nobody else waits for the world while this brick computes
         limit = self.limit_us
-        while port.end is None and port.gone is None:
+        while not port.finished:
             self._drain(port)
-            if port.end is not None or port.gone is not None:
+            if port.finished:
                 return
             target = port.marker
             if target is None:
