@@ -217,3 +217,33 @@ def test_what_a_side_wrote_before_it_died_without_waking_the_other_is_still_read
     os.waitpid(pid, 0)
     with pytest.raises(ProtocolError):
         sim.receive(timeout_s=5)
+
+
+@pytest.mark.skipif(not available(), reason="shared memory channel: x86-64 Linux only")
+def test_pending_takes_every_shape_of_what_the_ring_holds():
+    """One whole message is decoded where it lies in shared memory; several at once, a part of one, one
+    that wraps round the ring's end and one that is not a message go through the buffer: all come out as
+    they were sent, one at a time, and what is not the protocol is refused."""
+    sim, brick = shared_pair()
+    one, two = ["ops", [["w", 3, "250"], ["t", 10000]]], ["p", 5, "stdout", "a line"]
+    brick.send(one)
+    assert sim.pending() == one
+    assert sim.pending() is None
+    brick.send(one)
+    brick.send(two)
+    assert [sim.pending(), sim.pending(), sim.pending()] == [one, two, None]
+    brick.send_bytes(b'["ops", [["t", ')  # half a message: nothing yet
+    assert sim.pending() is None
+    brick.send_bytes(b"20000]]]\n")
+    assert sim.pending() == ["ops", [["t", 20000]]]
+    filler = ["f", "x" * 100_000]
+    size = len(encode(filler))
+    while brick._written % RING_BYTES + size <= RING_BYTES:
+        brick.send(filler)
+        assert sim.pending() == filler
+    brick.send(filler)  # across the ring's end
+    assert sim.pending() == filler
+    assert sim.pending() is None
+    brick.send_bytes(b'{"not": "a message"}\n')
+    with pytest.raises(ProtocolError):
+        sim.pending()
