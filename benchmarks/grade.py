@@ -1,16 +1,21 @@
 #!/usr/bin/env python3
-"""How long grading a class takes: thirty submissions of `line-follow`, two at a time.
+"""How long grading a class takes: thirty submissions of `line-follow` (or of a lesson of two robots).
 
 The class is made up: thirty line followers as students write them, each with its own speed
 and steering (most follow the line; some are too fast or too slow, one never starts), each in a
 student's folder or as a single file.  They are graded with the command a teacher types:
 
-    ev3sim2d grade line-follow CLASS --jobs 2 --json results.json
+    ev3sim2d grade line-follow CLASS --json results.json
 
+(as many runs at a time as the grader chooses: grading/grader.py, default_jobs; --jobs N to say).
 Target: under 30 s of wall time on a 2-core machine.  The same class is then graded by the code of
 commit IN_PROCESS_COMMIT (taken from git), the last that ran programs inside the simulator's
 process, for the ratio in one run (that lesson had fewer variants, so the ratio is per run).
-Run:  python benchmarks/grade.py [--jobs 2] [--students 30] [--keep DIR] [--no-baseline]
+--lesson convoy grades thirty copies of that lesson's own solution instead (its runs have two robots:
+the student's and the pacer; no baseline, which had no such lessons).  --compare-jobs N also grades the
+same class with --jobs N, for the ratio in one run.
+Run:  python benchmarks/grade.py [--jobs N] [--students 30] [--lesson line-follow|convoy]
+      [--compare-jobs N] [--keep DIR] [--no-baseline]
 """
 
 from __future__ import annotations
@@ -26,6 +31,8 @@ import time
 from pathlib import Path
 
 from old_code import IN_PROCESS_COMMIT, old_code
+
+ROOT = Path(__file__).resolve().parents[1]
 
 # run `python -m ev3sim2d` from the old code on PYTHONPATH, not today's editable install
 OLD_MAIN = (
@@ -71,12 +78,14 @@ def make_class(folder: Path, students: int) -> None:
 
 
 def grade_class(
-    folder: Path, results: Path, jobs: int, code: Path | None = None
+    folder: Path, results: Path, jobs: int | None, code: Path | None = None, lesson: str = "line-follow"
 ) -> tuple[float, float, dict]:
-    """Grade the class with `ev3sim2d grade`; code: an old source tree to run instead of today's.
-    Returns the wall time, the CPU time of the grader and its workers, and the results document."""
+    """Grade the class with `ev3sim2d grade` (jobs None: as the grader chooses); code: an old source tree
+    to run instead of today's.  Returns the wall time, the CPU time of the grader and its workers, and the
+    results document."""
     results.unlink(missing_ok=True)
-    args = ["grade", "line-follow", str(folder), "--jobs", str(jobs), "--json", str(results), "--quiet"]
+    told = [] if jobs is None else ["--jobs", str(jobs)]
+    args = ["grade", lesson, str(folder), *told, "--json", str(results), "--quiet"]
     env = {**os.environ, "PYTHONHASHSEED": "0"}
     if code is None:
         command, cwd = [sys.executable, "-m", "ev3sim2d", *args], None
@@ -98,8 +107,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument(
+        "--jobs", type=int, default=None, help="runs at a time (default: the grader's choice)"
+    )
     parser.add_argument("--students", type=int, default=30)
+    parser.add_argument("--lesson", choices=["line-follow", "convoy"], default="line-follow")
+    parser.add_argument("--compare-jobs", type=int, metavar="N", help="also grade the class with --jobs N")
     parser.add_argument("--keep", metavar="DIR", help="make the class in DIR and keep it (and results.json)")
     parser.add_argument("--no-baseline", action="store_true", help="do not grade the class with the old code")
     args = parser.parse_args()
@@ -108,9 +121,15 @@ def main() -> int:
         root = Path(args.keep or scratch)
         folder = root / "class"
         folder.mkdir(parents=True, exist_ok=True)
-        make_class(folder, args.students)
+        if args.lesson == "line-follow":
+            make_class(folder, args.students)
+        else:
+            solution = (ROOT / "lessons" / args.lesson / "solution.py").read_text()
+            for i in range(args.students):
+                (folder / f"student{i:02d}.py").write_text(solution)
+        told = "the grader's choice of runs at a time" if args.jobs is None else f"--jobs {args.jobs}"
         try:
-            wall, cpu, data = grade_class(folder, root / "results.json", args.jobs)
+            wall, cpu, data = grade_class(folder, root / "results.json", args.jobs, lesson=args.lesson)
         except RuntimeError as err:
             print(err, file=sys.stderr)
             return 1
@@ -119,17 +138,22 @@ def main() -> int:
         full = sum(1 for s in submissions if s["score"] == s["max_score"])
         statuses = sorted({s["status"] for s in submissions})
         print(
-            f"graded {len(submissions)} submissions of line-follow ({runs} runs, {len(data['variants'])} variants "
-            f"each) with --jobs {args.jobs} in {wall:.1f} s wall ({full} with full marks; statuses: "
+            f"graded {len(submissions)} submissions of {args.lesson} ({runs} runs, {len(data['variants'])} "
+            f"variants each) with {told} in {wall:.1f} s wall ({full} with full marks; statuses: "
             f"{', '.join(statuses)})"
         )
-        print(
-            f"CPU time of the grader and its workers: {cpu:.1f} s ({cpu / args.jobs:.1f} s per job slot: "
-            "the wall time on an otherwise idle machine)"
-        )
-        if args.students == 30 and args.jobs == 2:
+        print(f"CPU time of the grader and its workers: {cpu:.1f} s")
+        if args.students == 30 and args.lesson == "line-follow":
             print(f"target: under 30 s -> {'met' if wall < 30 else 'NOT met'}")
-        code = None if args.no_baseline else old_code(Path(scratch))
+        if args.compare_jobs is not None:
+            other_wall, other_cpu, _ = grade_class(
+                folder, root / "compared.json", args.compare_jobs, lesson=args.lesson
+            )
+            print(
+                f"the same class with --jobs {args.compare_jobs}: {other_wall:.1f} s wall, {other_cpu:.1f} s CPU "
+                f"(wall: {wall / other_wall:.2f} of it)"
+            )
+        code = None if args.no_baseline or args.lesson != "line-follow" else old_code(Path(scratch))
         if code is not None:
             try:
                 old_wall, old_cpu, old = grade_class(folder, Path(scratch) / "old.json", args.jobs, code)

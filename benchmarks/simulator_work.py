@@ -141,7 +141,9 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=20.0, help="simulated seconds of each run")
     parser.add_argument("--repeat", type=int, default=5, help="replays (and references); the best is kept")
     args = parser.parse_args()
-    print(f"best of {args.repeat}, by CPU time; reference: the world alone, one robot on line (see the docstring)")
+    print(
+        f"best of {args.repeat}, by CPU time; reference: the world alone, one robot on line (see the docstring)"
+    )
     print("| scenario | recorded run | simulator's own work | / reference | allows at most |")
     print("|---|---|---|---|---|")
     for name, (maze, program, robots) in SCENARIOS.items():

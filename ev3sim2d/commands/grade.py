@@ -61,7 +61,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=int,
         default=None,
         metavar="N",
-        help=f"grade N runs at a time (default: {default_jobs()})",
+        help=f"grade N runs at a time (default: {default_jobs()} here for a lesson of one robot; a core for each "
+        "process of a run, the simulator and each robot's brick, where they can spin as they wait)",
     )
     parser.add_argument(
         "--json",

@@ -39,6 +39,11 @@ def flush_wakes() -> None:
         _deferred_wakes.pop().wake_now()
 
 
+def can_spin() -> bool:
+    """Whether a connection here can wait by spinning (reading without blocking: not on Windows)."""
+    return _DONTWAIT is not None
+
+
 def spinning_processes(count: int, own_cores: bool) -> None:
     """How many processes of this run spin while they wait for each other (the simulator and its bricks: 2
     unless told), and whether they were given cores of their own (simulator/cores.py).  More of them than

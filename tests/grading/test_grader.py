@@ -6,7 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.grading.grader import CoreShare, grade, load_results
+from ev3sim2d.grading import grader
+from ev3sim2d.grading.grader import CoreShare, default_jobs, grade, load_results
 from ev3sim2d.grading.grader_key import grader_key
 from ev3sim2d.grading.lesson import load_lesson
 from ev3sim2d.grading.submission import find_submissions
@@ -154,3 +155,50 @@ def test_an_interrupt_keeps_what_is_done_and_leaves_no_worker_behind(lesson, pro
 def test_runs_share_out_the_cores_only_when_they_must(monkeypatch, cores, jobs, running, expected):
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: cores, raising=False)
     assert CoreShare(jobs).least_used(running) == expected
+
+
+@pytest.mark.parametrize(
+    "lesson_id, cores, spin, expected",
+    [
+        ("line-follow", {0, 1}, True, 1),  # the simulator and the brick: a core each
+        ("line-follow", {0, 1, 2, 3}, True, 2),
+        ("line-follow", {4, 7, 9, 11, 12}, True, 2),  # whatever the cores' numbers
+        ("convoy", {0, 1}, True, 1),  # the simulator and two bricks, the student's and the pacer's
+        ("convoy", {0, 1, 2, 3}, True, 1),
+        ("convoy", {0, 1, 2, 3, 4, 5}, True, 2),
+        ("line-follow", {0}, True, 1),  # one core: still one run
+        ("convoy", {0, 1}, False, 2),  # where nothing can spin (Windows): each waits asleep, a run a core
+        (None, {0, 1, 2, 3}, True, 2),  # no lesson (the command's help): a lesson of one robot
+    ],
+)
+def test_runs_at_a_time_by_default_give_each_process_of_a_run_a_core(
+    monkeypatch, lesson_id, cores, spin, expected
+):
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: cores, raising=False)
+    monkeypatch.setattr(grader, "can_spin", lambda: spin)
+    lesson = load_lesson(lesson_id) if lesson_id else None
+    assert default_jobs(lesson) == expected
+
+
+def test_a_lesson_of_two_robots_on_two_cores_is_graded_a_run_at_a_time_with_its_processes_placed(
+    monkeypatch, tmp_path
+):
+    """Without --jobs: one run at a time, each alone on the machine, so its simulator and bricks take cores
+    of their own (Job.alone: run_programs(place=True)), and nothing is pinned to one core."""
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(grader, "can_spin", lambda: True)
+    lesson = load_lesson("convoy")
+    for name in ("a", "b"):
+        (tmp_path / f"{name}.py").write_text((lesson.folder / "solution.py").read_text())
+    started = []
+    start_job = grader.start_job
+
+    def watched(job, *args):
+        started.append((job.alone, job.cpu, len(started)))
+        return start_job(job, *args)
+
+    monkeypatch.setattr(grader, "start_job", watched)
+    grading = grade(lesson, find_submissions([str(tmp_path)]))
+    assert [r.score for r in grading.results] == [lesson.max_score] * 2
+    assert len(started) == 2 * len(lesson.variants)
+    assert all(alone and cpu is None for alone, cpu, _ in started)
