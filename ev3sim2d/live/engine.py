@@ -24,6 +24,7 @@ from ..devices.motor import state_text
 from ..results.trace import Trace
 from ..simulator.brick_port import BrickPort
 from ..simulator.bricks import BrickLimits, BrickProcess, brick_welcome, start_brick
+from ..simulator.cores import RunCores
 from ..simulator.program import Program, ProgramError
 from ..simulator.run import (
     await_hello,
@@ -45,6 +46,7 @@ from ..world.world import World
 from ..world.yaml_source import read_text_file
 
 MAX_STEP_US = 50_000  # at most this much simulated time between two looks at the commands
+FAST_SPEED = 10.0  # from this many times real time, the simulator and the bricks spin as they wait (_fast)
 FRAME_S = 1 / 60  # how often a paced run looks at the clock when it is ahead of it
 MIN_SPEED, MAX_SPEED = 0.1, 50.0
 PRINTED_KEPT = 200  # printed lines in the published state (all are in the trace)
@@ -106,6 +108,7 @@ class LiveRun:
         self.last_trace: Trace | None = None  # the trace of the last run that ended
         self._sim = None
         self._session: Session | None = None
+        self._cores: RunCores | None = None  # where the run's processes run (simulator/cores.py)
         self._ports: list[BrickPort] = []
         self._bricks: list[BrickProcess] = []
         self._shown: list[tuple[str, str]] = []
@@ -301,9 +304,11 @@ class LiveRun:
         self._ports, self._bricks, self._shown = [], [], []
         limits = BrickLimits()
         printed: list = []
+        self._cores = RunCores(count, spin=True)
         for i, path in enumerate(self.programs):
             real = path.resolve()
-            brick, read_paths = start_brick([real.parent], spin=False, limits=limits, program=real)
+            brick, read_paths = start_brick([real.parent], spin=self._fast(), limits=limits, program=real)
+            self._cores.brick_started(i, brick.popen.pid)
             self._shown.append((str(path), ran_as(real, brick)))
             self._bricks.append(brick)
             welcome = brick_welcome(
@@ -326,7 +331,9 @@ class LiveRun:
                 )
         for port in self._ports:
             await_hello(port)
-        self._session = Session(sim, self._ports, self.limit_us, self.hang_after_s, printed, None, spin=False)
+        self._cores.start()  # (this thread runs the session)
+        self._session = Session(sim, self._ports, self.limit_us, self.hang_after_s, printed, None)
+        self._session.set_spin(self._fast())
         self.status = "paused" if self._paused_by_user else "running"
         self._pace = (time.perf_counter(), 0)
         self._check_ended()
@@ -351,6 +358,15 @@ class LiveRun:
         for brick in self._bricks:
             brick.stop()
         self._bricks = []
+        if self._cores is not None:
+            self._cores.end()
+            self._cores = None
+
+    def _fast(self) -> bool:
+        """Whether the simulator and the bricks spin as they wait for each other: only when the run goes as
+        fast as it can, or nearly (at FAST_SPEED times real time or more); a run at the clock's pace waits
+        for the clock most of the time, and spinning would only burn the cores then."""
+        return self.speed is None or self.speed >= FAST_SPEED
 
     def _finish(self) -> None:
         """The run is over (every program ended, the time limit, or a reload): keep its trace."""
@@ -448,6 +464,7 @@ class LiveRun:
         self.speed = speed
         if self._session is not None:
             self._pace = (time.perf_counter(), self._session.world_us)
+            self._session.set_spin(self._fast())
         self._publish()
 
     def _reload(self) -> None:

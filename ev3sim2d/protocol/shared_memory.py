@@ -195,6 +195,12 @@ class SharedChannel(Channel):
         words[self._in[1]] = produced
         return True
 
+    def set_spin(self, spin_s: float) -> None:
+        """Channel.set_spin; the simulator's end tells its brick at once (the brick spins only when told)."""
+        super().set_spin(spin_s)
+        if self._simulator:
+            self._may_spin()
+
     def _may_spin(self) -> bool:
         """The simulator looks at the machine's load (and tells the brick, which cannot see it)."""
         words = self._words

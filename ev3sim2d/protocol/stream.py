@@ -109,6 +109,10 @@ class Channel:
     def fileno(self) -> int:
         return self.sock.fileno()
 
+    def set_spin(self, spin_s: float) -> None:
+        """How long this side spins before it sleeps when it waits (0: it never spins), from now on."""
+        self.spin_s = spin_s if _DONTWAIT is not None else 0.0
+
     # ------------------------------------------------------------------ sending
     def send(self, message: list) -> None:
         self.send_bytes(encode(message))

@@ -91,6 +91,14 @@ class Session:
             port.time_limit_us = limit_us
         Mailboxes(ports, sim.tick_us)  # (Bluetooth between these bricks: port.mailboxes)
 
+    def set_spin(self, spin: bool) -> None:
+        """Whether the simulator and its bricks spin as they wait for each other from now on (a live run
+        as fast as it goes), or sleep until woken (a live run at the pace of the clock, which mostly waits
+        for the clock: spinning would only burn the cores)."""
+        self.spin_s = SPIN_S if spin else 0.0
+        for port in self.ports:
+            port.channel.set_spin(self.spin_s)
+
     def _step_to(self, target_us: int) -> int:
         """Run the world's ticks up to target_us; after each, the snapshots bricks will need.  A quiet brick
         that wakes at a tick (its value changed) stops the world there: returns where the world is."""

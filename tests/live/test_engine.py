@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from ev3sim2d.live.engine import LiveError, LiveRun
+from ev3sim2d.live.engine import FAST_SPEED, LiveError, LiveRun
+from ev3sim2d.protocol.stream import can_spin
 from ev3sim2d.simulator.run import run_programs
 from ev3sim2d.world.cell import Cell
 from ev3sim2d.world.maze_file import find_maze, load_maze
@@ -67,6 +68,33 @@ def test_a_live_run_without_interventions_is_the_run_of_run_however_it_was_pause
     _wait_for(live, lambda s: s["status"] == "ended")
     trace = live.close()
     assert trace.fingerprint() == alone.trace.fingerprint()
+
+
+def test_a_live_run_spins_only_as_fast_as_it_goes_and_is_still_the_run_of_run(started):
+    """As fast as it goes (or at FAST_SPEED and more) the simulator and its bricks spin as they wait for each
+    other, as `run` has them do; at the clock's pace they sleep until woken (the run waits for the clock
+    most of the time).  Neither changes the run."""
+    programs = [FOLLOWER, FOLLOWER]
+    alone = run_programs(programs, load_maze(find_maze("line-shared")), time_limit_s=3)
+    live = started(programs, load_maze(find_maze("line-shared")), speed=1.0, time_limit_s=3, paused=True)
+    _wait_for(live, lambda s: s["status"] == "paused" and s["robots"])
+    session = live._session
+
+    def spinning() -> list[bool]:
+        return [session.spin_s > 0] + [port.channel.spin_s > 0 for port in session.ports]
+
+    can = can_spin()
+    assert spinning() == [False, False, False]
+    live.set_speed(None)
+    assert spinning() == [True, can, can]
+    live.set_speed(2.0)
+    assert spinning() == [False, False, False]
+    live.set_speed(FAST_SPEED)
+    assert spinning() == [True, can, can]
+    live.set_speed(None)
+    live.resume()
+    _wait_for(live, lambda s: s["status"] == "ended")
+    assert live.close().fingerprint() == alone.trace.fingerprint()
 
 
 def test_pause_freezes_time_and_resume_goes_on(started):
