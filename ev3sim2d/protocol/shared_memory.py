@@ -30,10 +30,12 @@ import select
 import socket
 import time
 
-from .messages import ConnectionGone, ProtocolError, decode
+from .messages import MAX_MESSAGE_BYTES, ConnectionGone, ProtocolError, decode
 from .stream import Channel, cores_idle, defer_wake, flush_wakes
 
 RING_BYTES = 1 << 20
+if RING_BYTES >= MAX_MESSAGE_BYTES:  # (SharedChannel.pending takes a whole message from the ring unchecked)
+    raise ImportError("the shared memory ring must be smaller than the longest message")
 HEADER_BYTES = 256  # producer position, consumer position, asleep flag: 64 bytes apart
 SIZE = 2 * (HEADER_BYTES + RING_BYTES)
 SLEEP_CHECK_S = 0.002  # a sleeper looks again this often, whatever the wake-ups do
@@ -155,7 +157,8 @@ class SharedChannel(Channel):
         """Channel.pending, with its usual case short (the simulator takes a message from each brick a
         tick): nothing buffered, and what the ring holds, before its end, is one whole message: decoded
         from shared memory where it lies, without passing through the buffer.  Anything else (a part of a
-        message, several, one that wraps round the ring, a position that cannot be) goes the long way."""
+        message, several, one that wraps round the ring, a position that cannot be) goes the long way.
+        (No message that fits in the ring is over MAX_MESSAGE_BYTES, the longest the long way takes.)"""
         if not self._buffer:
             words = self._words
             produced = words[self._in[0]]
