@@ -649,6 +649,26 @@ BUDGET_ATTACKS = {
         """,
         "not a JSON message",
     ),
+    # the whole shared ring one message, nested deeper than any parser's stack, written where the simulator
+    # takes a whole message straight from shared memory (SharedChannel.pending); over a socket, the same bytes
+    "deep_ring": (
+        """\
+        RING = 1 << 20
+        ch = link.channel
+        time.sleep(0.5)
+        link.flush()
+        if hasattr(ch, "_words"):
+            pad = RING - ch._written % RING  # a heartbeat, padded with spaces to the ring's end
+            pad += RING if pad < 64 else 0
+            head = b'["ops",[["@",%d]]' % now()
+            ch.send_bytes(head + b" " * (pad - len(head) - 2) + b"]\\n")
+            while ch._words[ch._out[1]] != ch._written:  # (its clock stands still: nothing else is sent)
+                pause()
+        ch.send_bytes(b"[" * (RING - 1) + b"\\n")
+        time.sleep(5)
+        """,
+        "not a JSON message",
+    ),
     # quiet waits (protocol 2, op u) that lie: back in time, past any run, on a value never read, malformed
     "quiet_backwards": (
         """\
