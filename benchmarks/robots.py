@@ -10,6 +10,8 @@ For 1, 2 and 4 robots in mazes/sumo-4.yaml:
 - waiting bricks: N copies of a program of blocking moves (on_for_seconds, on_for_degrees, sleep), which
   waits for its motors most of the time: what a brick's "nothing from me before t" saves (docs/protocol.md,
   Quiet waits);
+- the world alone with the robots apart: each turning on the spot where it starts, every sensor read every
+  tick, so that they never touch: the cost of more robots without the cost of their meeting;
 each as a multiple of real time (simulated seconds per wall second, the best of --repeat), and per row
 the cost of N robots relative to one (world alone: the one-robot figure / the N-robot one) and what is
 left of the world's speed with the bricks (with bricks / world alone).
@@ -99,11 +101,22 @@ class SumoDriver:
             self._run("look", "run-forever", 25, -25)
 
 
-def world_alone(world, robots: int, seconds: float, clock=time.perf_counter) -> float:
+class Turner(SumoDriver):
+    """Every sensor read each tick, the robot turning on the spot where it started: robots that never touch
+    (they start 60 cm apart), though their sensors still see each other."""
+
+    def tick(self) -> None:
+        for sensor in self.sensors:
+            sensor.values()
+        self._run("look", "run-forever", 25, -25)
+
+
+def world_alone(world, robots: int, seconds: float, clock=time.perf_counter, driver=SumoDriver) -> float:
     """Real-time factor of the world stepping `robots` sumo robots, all their sensors read every tick
-    (by `clock`: the wall clock, or this process's CPU time, steadier on a loaded machine)."""
+    (by `clock`: the wall clock, or this process's CPU time, steadier on a loaded machine); driver: how
+    they drive (SumoDriver: as examples/sumo.py, pushing each other; Turner: on the spot, apart)."""
     sim, _ = new_simulation(world, robots, None, 0, None)
-    drivers = [SumoDriver(robot) for robot in sim.robots]
+    drivers = [driver(robot) for robot in sim.robots]
     ticks = int(round(seconds * 1e6 / sim.tick_us))
     start = clock()
     now = 0
@@ -124,15 +137,17 @@ def with_bricks(world, robots: int, seconds: float, program: Path = SUMO, place:
 
 
 def table(world, args, clock, moves: Path, place: bool = True) -> list[tuple]:
-    """(robots, world alone, busy bricks, waiting bricks) per row; None where not measured."""
+    """(robots, world alone, busy bricks, waiting bricks, world alone with the robots apart) per row; None
+    where not measured."""
     rows = []
     for n in args.robots:
         alone = max(world_alone(world, n, args.world_seconds, clock) for _ in range(args.repeat))
+        apart = max(world_alone(world, n, args.world_seconds, clock, Turner) for _ in range(args.repeat))
         busy = waiting = None
         if not args.world_only:
             busy = max(with_bricks(world, n, args.seconds, place=place) for _ in range(args.repeat))
             waiting = max(with_bricks(world, n, args.seconds, moves, place) for _ in range(args.repeat))
-        rows.append((n, alone, busy, waiting))
+        rows.append((n, alone, busy, waiting, apart))
     return rows
 
 
@@ -148,20 +163,24 @@ def line_followers(args, place: bool = True) -> tuple[float, float]:
 
 def show(title: str, rows: list[tuple]) -> None:
     print(title)
-    print("| robots | world alone | cost vs one robot | sumo bricks | / world | waiting bricks | / world |")
-    print("|---|---|---|---|---|---|---|")
-    one = rows[0][1] if rows[0][0] == 1 else None
-    for n, alone, busy, waiting in rows:
+    print(
+        "| robots | world alone | cost vs one robot | sumo bricks | / world | waiting bricks | / world "
+        "| world alone, robots apart | cost vs one robot |"
+    )
+    print("|---|---|---|---|---|---|---|---|---|")
+    one, one_apart = (rows[0][1], rows[0][4]) if rows[0][0] == 1 else (None, None)
+    for n, alone, busy, waiting, apart in rows:
         cost = f"{one / alone:.2f}x" if one else "-"
+        cost_apart = f"{one_apart / apart:.2f}x" if one_apart else "-"
         cells = [f"{b:.0f}x | {b / alone:.2f}" if b is not None else "- | -" for b in (busy, waiting)]
-        print(f"| {n} | {alone:.0f}x | {cost} | {cells[0]} | {cells[1]} |")
+        print(f"| {n} | {alone:.0f}x | {cost} | {cells[0]} | {cells[1]} | {apart:.0f}x | {cost_apart} |")
 
 
 def scaled_targets(rows: list[tuple], one_follower: float, two_followers: float) -> None:
     """The two targets in times real time, as the ratios to a reference they were on the machine they were
     set on (ISSUE_REFERENCE), and this run's figures as the same ratios: on a machine slower or busier than
     that one, the ratio says whether a target is met where the real-time factor cannot."""
-    by_robots = {n: (alone, busy) for n, alone, busy, _ in rows}
+    by_robots = {n: (alone, busy) for n, alone, busy, _, _ in rows}
     if 1 in by_robots and 4 in by_robots and by_robots[4][1] is not None:
         reference, target = ISSUE_REFERENCE["world alone, one robot"], ISSUE_TARGETS["four sumo bricks"]
         ratio = by_robots[4][1] / by_robots[1][0]
