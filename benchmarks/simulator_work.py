@@ -13,8 +13,8 @@ simulator's part alone, by CPU time:
    when the session takes it, each message to a brick encoded and dropped), and time it by this process's
    CPU time.  The replay must move the robots exactly as the recorded run did (checked: the trace's
    motion), or it measured something else;
-3. reference, in the same run: the world stepping alone with one robot, its motors driven at a steady
-   speed and its sensors read every tick.
+3. reference, in the same run: the world stepping alone with one robot, its sensors read every tick
+   (benchmarks/realtime.py's (a), timed by CPU time).
 
 Printed per scenario: the replay's microseconds a tick (best of --repeat), that as a multiple of the
 reference's, and the real-time factor it allows at most (a tick of 10 ms in that many microseconds).
@@ -30,11 +30,14 @@ import hashlib
 import time
 from pathlib import Path
 
+from realtime import world_alone
+
 from ev3sim2d.protocol import ProtocolError
 from ev3sim2d.protocol.messages import decode, encode
 from ev3sim2d.simulator.brick_port import BrickPort
 from ev3sim2d.simulator.run import new_simulation, run_programs
 from ev3sim2d.simulator.session import Session
+from ev3sim2d.simulator.simulation import TICK_US
 from ev3sim2d.world.maze_file import find_maze, load_maze
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -117,23 +120,9 @@ def replay(maze: str, lines: list[list[bytes]], seconds: float) -> tuple[float, 
 
 
 def reference(seconds: float) -> float:
-    """CPU microseconds a tick of the world alone: one robot on mazes/line.yaml, driving at half speed
-    with its sensors read every tick."""
-    sim, _ = new_simulation(load_maze(find_maze("line")), 1, None, 0, None)
-    robot = sim.robots[0]
-    for motor in (robot.left, robot.right):
-        motor.write("speed_sp", str(motor.max_speed // 2))
-        motor.write("command", "run-forever")
-    sensors = list(robot.sensors.values())
-    ticks = int(round(seconds * 1e6 / sim.tick_us))
-    now = 0
-    start = time.process_time()
-    for _ in range(ticks):
-        now += sim.tick_us
-        sim.tick(now)
-        for sensor in sensors:
-            sensor.values()
-    return (time.process_time() - start) / ticks * 1e6
+    """CPU microseconds a tick of the world alone, as benchmarks/realtime.py's (a) measures it: one robot
+    on mazes/line.yaml, driving an arc with its four sensors read every tick."""
+    return TICK_US / world_alone(load_maze(find_maze("line")), seconds, time.process_time)
 
 
 def main() -> None:
@@ -157,7 +146,7 @@ def main() -> None:
             ref = min(ref, reference(args.seconds / 2))
         print(
             f"| {name} ({robots} bricks, {maze}) | {recorded:.0f}x | {best:.1f} us/tick | {best / ref:.2f} | "
-            f"{10_000 / best:.0f}x |"
+            f"{TICK_US / best:.0f}x |"
         )
 
 
