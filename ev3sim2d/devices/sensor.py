@@ -102,6 +102,8 @@ class LegoSensor(Device):
         self._sample: tuple[int, ...] = ()
         self.samples: list[tuple[int, str, tuple[int, ...]]] = []  # (tick, mode, values) of every measurement
         self._recorded = (-1, 0)  # the tick of the last sample recorded, and how many were in that tick
+        # per mode, how a measurement becomes the driver's value: 10 ** decimals, its bounds, whether noisy
+        self._scaling = {name: (10**m.decimals, m.low, m.high, m.noisy) for name, m in self.MODES.items()}
         r, w = self.readers, self.writers
         r.update(
             mode=lambda: self.mode,
@@ -142,35 +144,30 @@ class LegoSensor(Device):
 
     def values(self) -> tuple[int, ...]:
         """The current mode's values for this tick, as the driver gives them (scaled integers)."""
-        around = self.around
-        if self._sample_tick != around.tick or self._sample_mode != self.mode:
-            mode = self.MODES[self.mode]
-            scale = 10**mode.decimals
-            low, high = mode.low, mode.high
-            noise = self.noise if mode.noisy else 0.0
-            sample = []
-            for v in self.measure(self.mode):
-                if noise:
-                    v += around.rng.normal(0.0, noise)
-                v = round(v * scale)
-                sample.append(int(low if v < low else high if v > high else v))
-            self._sample = tuple(sample)
-            self._sample_tick = around.tick
-            self._sample_mode = self.mode
-            self._record((around.tick, self.mode, self._sample))
-        return self._sample
-
-    def _record(self, sample: tuple[int, str, tuple[int, ...]]) -> None:
-        """Add a measurement to the samples, at most SAMPLES_PER_TICK a tick (then the last is replaced)."""
-        tick, count = self._recorded
-        if tick != sample[0]:
-            tick, count = sample[0], 0
+        tick, mode = self.around.tick, self.mode
+        if self._sample_tick == tick and self._sample_mode == mode:
+            return self._sample
+        scale, low, high, noisy = self._scaling[mode]
+        noise = self.noise if noisy else 0.0
+        sample = []
+        for v in self.measure(mode):
+            if noise:
+                v += self.around.rng.normal(0.0, noise)
+            v = round(v * scale)
+            sample.append(int(low if v < low else high if v > high else v))
+        self._sample = sample = tuple(sample)
+        self._sample_tick, self._sample_mode = tick, mode
+        # recorded: at most SAMPLES_PER_TICK a tick, then the tick's last replaces the one before
+        recorded_tick, count = self._recorded
+        if recorded_tick != tick:
+            recorded_tick, count = tick, 0
         if count < SAMPLES_PER_TICK:
-            self.samples.append(sample)
+            self.samples.append((tick, mode, sample))
             count += 1
         else:
-            self.samples[-1] = sample
-        self._recorded = (tick, count)
+            self.samples[-1] = (tick, mode, sample)
+        self._recorded = (recorded_tick, count)
+        return sample
 
     def _value(self, n: int) -> str:
         values = self.values()
