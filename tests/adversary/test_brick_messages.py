@@ -47,6 +47,7 @@ from ev3sim2d.devices.brick_parts import Battery, Led
 from ev3sim2d.devices.device import C_INT_MAX, C_INT_MIN, C_ULONG_MAX
 from ev3sim2d.devices.motor import OVERLOADED, STALLED, TachoMotor
 from ev3sim2d.devices.registry import SENSORS
+from ev3sim2d.devices.sensor import SAMPLES_PER_TICK
 from ev3sim2d.protocol import PROTOCOL, Channel, ProtocolError, decode, encode
 from ev3sim2d.protocol.joining import join_message
 from ev3sim2d.render.audio import sound_track
@@ -805,6 +806,42 @@ def test_an_led_written_again_and_a_screen_drawn_again_are_not_kept_again():
     assert sim.trace.lcd_frames == [bytes.fromhex(white), bytes.fromhex(black), bytes.fromhex(white)]
     assert events[4][0] == 0.002099 and events[8][0] == 0.060099  # the last draw of each refresh
     assert port.lcd_frames == 3 and port.events == 10
+
+
+def test_a_sensor_measured_thousands_of_times_a_tick_keeps_a_few_samples_a_tick_and_the_last_one():
+    """A lying brick changes a sensor's mode and reads it again and again without its clock moving (an
+    honest program's mode write costs 3 ms, so it measures at most five times a tick).  Each measurement is
+    served, but the record keeps SAMPLES_PER_TICK of a tick at most, the tick's last in the last place: the
+    trace grows with virtual time only, and says what the sensor last measured in each tick."""
+    world = world_with(1)
+    sim = Simulation(world, [("r", world.robot, world.starts[0])])
+    replies = []
+    port = BrickPort(0, sim.robots[0], SimpleNamespace(send=replies.append), sim.trace, [])
+    modes = ["COL-AMBIENT", "COL-REFLECT", "COL-COLOR", "RGB-RAW"]
+    ops = [["k", 0, "lego-sensor", "sensor2", "mode"], ["k", 1, "lego-sensor", "sensor2", "value0"]]
+    ops += [["W", 0, "COL-REFLECT"], ["R", 1]]  # (the first write asks for the rule; the read subscribes)
+    ticks, flips = 3, 2_000
+    for tick in range(ticks):
+        for i in range(flips):
+            ops += [["w", 0, modes[i % len(modes)]], ["q"]]  # each reply carries value0 measured afresh
+        ops += [["t", TICK * (tick + 1)]]
+    port.accept(["ops", ops])
+    for tick in range(ticks):  # the world steps to each tick marker, as the session steps it
+        port.run_ops(TICK * tick)
+        assert port.marker == TICK * (tick + 1) and port.gone is None
+        sim.tick(port.marker)
+        port.marker = None
+    assert len(replies) == ticks * flips and all(r[0] == "reply" and len(r[2]) == 1 for r in replies)
+    samples = sim.robots[0].sensors["in3"].samples
+    per_tick = {}
+    for tick, mode, values in samples:
+        per_tick.setdefault(tick, []).append((mode, values))
+    assert sorted(per_tick) == list(range(ticks)) and len(samples) == ticks * SAMPLES_PER_TICK
+    last_mode = modes[(flips - 1) % len(modes)]  # RGB-RAW: four values, the last is the LEDs-off reading
+    for tick, kept in per_tick.items():
+        assert len(kept) == SAMPLES_PER_TICK
+        assert kept[-1][0] == last_mode and len(kept[-1][1]) == 4
+        assert kept[0][0] == ("COL-REFLECT" if tick == 0 else modes[0])  # the first measurement of the tick
 
 
 # ================================================================================ 3. containment
