@@ -160,13 +160,13 @@ class LegoSensor(Device):
         # recorded: at most SAMPLES_PER_TICK a tick, then the tick's last replaces the one before
         recorded_tick, count = self._recorded
         if recorded_tick != tick:
-            recorded_tick, count = tick, 0
+            count = 0
         if count < SAMPLES_PER_TICK:
             self.samples.append((tick, mode, sample))
             count += 1
         else:
             self.samples[-1] = (tick, mode, sample)
-        self._recorded = (recorded_tick, count)
+        self._recorded = (tick, count)
         return sample
 
     def _value(self, n: int) -> str:
